@@ -1,0 +1,49 @@
+// `rastercheck compare TEST.exr REF.exr [--heatmap FILE.exr] [--json FILE] [thresholds]`
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/options.h"
+#include "compare/report.h"
+#include "core/atomic_file.h"
+#include "core/exr_io.h"
+
+namespace rc::app {
+namespace {
+
+struct CompareArgs {
+  std::string test, reference, heatmap, json;
+  Thresholds thresholds;
+};
+
+int runCompare(const CompareArgs& args) {
+  for (const std::string* out : {&args.heatmap, &args.json}) {
+    if (!out->empty()) checkNotAnInput(*out, {args.test, args.reference});
+  }
+  const Framebuffer test = readExr(args.test);
+  const Framebuffer reference = readExr(args.reference);
+  Framebuffer heatmap;
+  const CompareReport report = compareImages(test, args.test, reference, args.reference,
+                                             args.thresholds, args.heatmap.empty() ? nullptr : &heatmap);
+  std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
+              reportToTable(report).c_str());
+  if (!args.heatmap.empty()) writeExr(heatmap, args.heatmap);
+  if (!args.json.empty()) writeTextFile(args.json, reportToJson(report).dump(2) + "\n");
+  return report.pass ? 0 : 1;
+}
+
+}  // namespace
+
+void registerCompare(CLI::App& root, Action& action) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* command = root.add_subcommand(
+      "compare", "compare a test EXR against a reference EXR and gate on the result");
+  command->add_option("test", args->test, "test image (e.g. the rasterizer's EXR)")->required();
+  command->add_option("reference", args->reference, "reference image")->required();
+  command->add_option("--heatmap", args->heatmap, "write an error heatmap EXR here");
+  command->add_option("--json", args->json, "write the JSON report here");
+  addThresholdOptions(command, args->thresholds);
+  command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
+}
+
+}  // namespace rc::app

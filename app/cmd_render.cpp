@@ -1,0 +1,47 @@
+// `rastercheck render SCENE --backend raster|reference -o FILE.exr`
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/options.h"
+#include "core/exr_io.h"
+
+namespace rc::app {
+namespace {
+
+struct RenderArgs {
+  std::string scene;
+  std::string backend = "raster";
+  std::string output;
+  RenderSettings settings;
+};
+
+int runRender(RenderArgs& args) {
+  finishRenderSettings(args.settings);
+  const Scene scene = loadScene(args.scene, args.settings);
+  setExrThreads(args.settings.threads);
+  const long long start = nowNanoseconds();
+  const Framebuffer fb = args.backend == "raster" ? rasterize(scene, args.settings.raster)
+                                                  : renderReference(scene, args.settings.reference);
+  const double ms = millisecondsSince(start);
+  writeExr(fb, args.output);
+  std::printf("%s: %s %dx%d, %zu triangles, %.1f ms -> %s\n", scene.name.c_str(), args.backend.c_str(),
+              fb.width(), fb.height(), scene.mesh.triangleCount(), ms, args.output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void registerRender(CLI::App& root, Action& action) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* command = root.add_subcommand("render", "render one scene with one backend to an EXR file");
+  command->add_option("scene", args->scene, "built-in scene, NAME[:key=value,...]")->required();
+  command->add_option("--backend", args->backend, "raster or reference")
+      ->check(CLI::IsMember({"raster", "reference"}))
+      ->capture_default_str();
+  command->add_option("-o,--output", args->output, "output EXR file")->required();
+  addRenderOptions(command, args->settings);
+  command->callback([args, &action] { action = [args] { return runRender(*args); }; });
+}
+
+}  // namespace rc::app

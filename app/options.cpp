@@ -1,0 +1,115 @@
+// Shared CLI options.
+#include "app/options.h"
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "scenes/registry.h"
+
+namespace rc::app {
+namespace {
+
+// CLI11's NonNegativeNumber lets NaN through (NaN < 0 is false); this one does not.
+const CLI::Validator kFiniteNonNegative(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
+          value < 0.0) {
+        return "must be a finite number >= 0, got '" + text + "'";
+      }
+      return {};
+    },
+    "FINITE>=0");
+
+}  // namespace
+
+void addRenderOptions(CLI::App* command, RenderSettings& s) {
+  command->add_option("--mode", s.raster.interpolation, "rasterizer interpolation")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Interpolation>{{"perspective", Interpolation::kPerspective},
+                                               {"affine", Interpolation::kAffine}},
+          CLI::ignore_case))
+      ->default_str("perspective");
+  command->add_option("--precision", s.raster.precision, "rasterizer arithmetic")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Precision>{{"float", Precision::kFloat}, {"double", Precision::kDouble}},
+          CLI::ignore_case))
+      ->default_str("float");
+  command->add_option("--subpixel-bits", s.raster.subpixelBits,
+                      "fraction bits of snapped vertex positions used for coverage")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  command->add_option("--threads", s.threads, "worker threads, 0 = all cores")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  command->add_option("--embree-isa", s.reference.isa,
+                      "Embree instruction set, pinned so results do not change with the CPU")
+      ->check(CLI::IsMember({"sse2", "sse4.2", "avx", "avx2", "avx512"}))
+      ->capture_default_str();
+  command->add_option("--size", s.size, "image size WxH, overriding the scene's (e.g. 1920x1080)");
+}
+
+void addThresholdOptions(CLI::App* command, Thresholds& t) {
+  command->add_option("--max-bary", t.bary, "gate: max barycentric error (absolute)")
+      ->check(kFiniteNonNegative)->capture_default_str();
+  command->add_option("--max-depth", t.depth, "gate: max depth error (relative)")
+      ->check(kFiniteNonNegative)->capture_default_str();
+  command->add_option("--max-attr", t.attribute, "gate: max attribute error (fraction of its range)")
+      ->check(kFiniteNonNegative)->capture_default_str();
+  command->add_option("--max-disagreement", t.disagreement,
+                      "gate: max fraction of covered pixels where the triangle differs")
+      ->check(kFiniteNonNegative)->capture_default_str();
+  command->add_option("--max-coverage", t.coverage,
+                      "gate: max fraction of covered pixels covered by one image only")
+      ->check(kFiniteNonNegative)->capture_default_str();
+}
+
+void finishRenderSettings(RenderSettings& s) {
+  s.raster.threads = s.threads;
+  s.reference.threads = s.threads;
+}
+
+Scene loadScene(const std::string& spec, const RenderSettings& settings) {
+  Scene scene = makeBuiltinScene(spec);
+  if (!settings.size.empty()) {
+    int w = 0, h = 0;
+    const std::string& text = settings.size;
+    const std::size_t x = text.find('x');
+    const bool ok = x != std::string::npos &&
+                    std::from_chars(text.data(), text.data() + x, w).ptr == text.data() + x &&
+                    std::from_chars(text.data() + x + 1, text.data() + text.size(), h).ptr ==
+                        text.data() + text.size();
+    if (!ok || w < 1 || h < 1 || w > 16384 || h > 16384) {
+      throw usageError("--size must be WxH with 1..16384 per side, got '" + text + "'");
+    }
+    CameraSpec camera = scene.camera.spec();
+    camera.width = w;
+    camera.height = h;
+    scene.camera = Camera(camera, "--size");
+  }
+  return scene;
+}
+
+void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const std::string& input : inputs) {
+    if (fs::exists(output, ec) && fs::equivalent(output, input, ec)) {
+      throw usageError("output " + output + " is also an input; refusing to overwrite it");
+    }
+  }
+}
+
+long long nowNanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double millisecondsSince(long long start) { return double(nowNanoseconds() - start) * 1e-6; }
+
+}  // namespace rc::app

@@ -1,0 +1,39 @@
+// Options shared by several subcommands, declared once: rasterizer settings, the reference's
+// settings, gate thresholds, scene loading and output-path checks.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "compare/compare.h"
+#include "rasterizer/rasterizer.h"
+#include "raytracer_ref/reference.h"
+#include "scenes/scene.h"
+
+namespace rc::app {
+
+struct RenderSettings {
+  RasterOptions raster;
+  ReferenceOptions reference;
+  int threads = 0;
+  std::string size;  // "WxH" override of the scene's image size, or empty
+};
+
+void addRenderOptions(CLI::App* command, RenderSettings& settings);
+void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
+
+// Propagates the thread count and checks the combination; throws usageError.
+void finishRenderSettings(RenderSettings& settings);
+
+// A built-in scene by NAME[:key=value,...], with the image size override applied.
+Scene loadScene(const std::string& spec, const RenderSettings& settings);
+
+// Throws usageError when `output` names the same file as one of `inputs`.
+void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs);
+
+// Milliseconds elapsed since `start` (steady clock).
+double millisecondsSince(long long startNanoseconds);
+long long nowNanoseconds();
+
+}  // namespace rc::app

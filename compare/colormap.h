@@ -1,0 +1,42 @@
+// A perceptual colour map (magma, sampled at nine stops from matplotlib's table and
+// interpolated linearly) and the colours reserved for pixel classes, which magma never uses.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace rc {
+
+using Rgb = std::array<float, 3>;
+
+inline Rgb magma(double t) {
+  static const float kStops[9][3] = {
+      {0.0015f, 0.0005f, 0.0139f}, {0.0788f, 0.0542f, 0.2117f}, {0.2321f, 0.0599f, 0.4377f},
+      {0.3904f, 0.1004f, 0.5019f}, {0.5503f, 0.1612f, 0.5057f}, {0.7164f, 0.2150f, 0.4753f},
+      {0.8688f, 0.2877f, 0.4093f}, {0.9737f, 0.5184f, 0.3678f}, {0.9871f, 0.9914f, 0.7495f}};
+  if (!(t >= 0.0)) t = 0.0;  // NaN maps to the bottom; callers colour NaN separately
+  t = std::min(t, 1.0) * 8.0;
+  const int i = std::min(int(t), 7);
+  const float f = float(t - i);
+  return {kStops[i][0] + f * (kStops[i + 1][0] - kStops[i][0]),
+          kStops[i][1] + f * (kStops[i + 1][1] - kStops[i][1]),
+          kStops[i][2] + f * (kStops[i + 1][2] - kStops[i][2])};
+}
+
+// Log scale of the heatmap: errors at or below 10^kLogMin are the darkest, 10^kLogMax and
+// above the brightest.
+inline constexpr double kHeatLogMin = -8.0;
+inline constexpr double kHeatLogMax = -1.0;
+
+inline Rgb heatColour(double error) {
+  if (!(error > 0.0)) return magma(0.0);
+  return magma((std::log10(error) - kHeatLogMin) / (kHeatLogMax - kHeatLogMin));
+}
+
+inline constexpr Rgb kColourBackground{0.15f, 0.15f, 0.15f};     // both empty: grey
+inline constexpr Rgb kColourDifferentTriangle{0.0f, 1.0f, 0.0f};  // green
+inline constexpr Rgb kColourOneSideOnly{0.0f, 0.9f, 1.0f};        // cyan
+inline constexpr Rgb kColourNonFinite{1.0f, 0.0f, 1.0f};          // NaN or Inf: magenta
+
+}  // namespace rc

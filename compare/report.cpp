@@ -1,0 +1,102 @@
+// JSON and table renderings of a comparison.
+#include "compare/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace rc {
+
+std::string formatNumber(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", value);
+  return buf;
+}
+
+namespace {
+
+// JSON has no NaN or Inf: they are written as strings so no reader mistakes them for numbers.
+nlohmann::json number(double value) {
+  if (std::isfinite(value)) return value;
+  return formatNumber(value);
+}
+
+}  // namespace
+
+nlohmann::json reportToJson(const CompareReport& r) {
+  nlohmann::json j;
+  j["format_version"] = kReportFormatVersion;
+  j["verdict"] = r.pass ? "pass" : "fail";
+  j["reasons"] = r.reasons;
+  j["test"] = r.testPath;
+  j["reference"] = r.referencePath;
+  j["width"] = r.width;
+  j["height"] = r.height;
+  nlohmann::json pixels;
+  for (int c = 0; c < kPixelClassCount; ++c) pixels[pixelClassName(PixelClass(c))] = r.classCounts[c];
+  pixels["covered_either"] = r.coveredEither;
+  j["pixels"] = pixels;
+  j["disagreement_fraction"] = number(r.disagreementFraction);
+  j["coverage_fraction"] = number(r.coverageFraction);
+  j["thresholds"] = {{"bary", r.thresholds.bary},
+                     {"depth", r.thresholds.depth},
+                     {"attribute", r.thresholds.attribute},
+                     {"disagreement", r.thresholds.disagreement},
+                     {"coverage", r.thresholds.coverage}};
+  nlohmann::json families = nlohmann::json::object();
+  for (const FamilyReport& f : r.families) {
+    const FamilyStats& s = f.stats;
+    nlohmann::json fj = {{"unit", f.unit},        {"count", s.count},     {"nan", s.nanCount},
+                         {"inf", s.infCount},     {"max", number(s.max)}, {"mean", number(s.mean)},
+                         {"rms", number(s.rms)},  {"p50", number(s.p50)}, {"p99", number(s.p99)},
+                         {"p999", number(s.p999)}, {"threshold", f.threshold},
+                         {"gated", number(f.gated)}};
+    if (f.unit == "absolute" && f.name != "bary" && f.name != "depth") fj["range"] = number(f.range);
+    if (s.worst.x >= 0) {
+      fj["worst"] = {{"x", s.worst.x}, {"y", s.worst.y}, {"test", number(s.worst.test)},
+                     {"reference", number(s.worst.reference)}};
+    }
+    families[f.name] = fj;
+  }
+  j["families"] = families;
+  return j;
+}
+
+std::string reportToTable(const CompareReport& r) {
+  std::ostringstream out;
+  const auto& cc = r.classCounts;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "pixels %dx%d: %zu covered by either; same triangle %zu, different %zu (%s), "
+                "test only %zu, reference only %zu\n",
+                r.width, r.height, r.coveredEither, cc[int(PixelClass::kSameTriangle)],
+                cc[int(PixelClass::kDifferentTriangle)], formatNumber(r.disagreementFraction).c_str(),
+                cc[int(PixelClass::kTestOnly)], cc[int(PixelClass::kReferenceOnly)]);
+  out << line;
+  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %9s %5s %9s  %s\n", "family", "max",
+                "mean", "rms", "p50", "p99", "p99.9", "nan+inf", "limit", "worst pixel: test / ref");
+  out << line;
+  for (const FamilyReport& f : r.families) {
+    const FamilyStats& s = f.stats;
+    std::string worst = "-";
+    if (s.worst.x >= 0) {
+      worst = "(" + std::to_string(s.worst.x) + "," + std::to_string(s.worst.y) + ") " +
+              formatNumber(s.worst.test) + " / " + formatNumber(s.worst.reference);
+    }
+    std::string limit = formatNumber(f.threshold);
+    if (f.range > 0.0) limit += "*" + formatNumber(f.range);
+    std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %9s %5zu %9s  %s\n", f.name.c_str(),
+                  formatNumber(s.max).c_str(), formatNumber(s.mean).c_str(),
+                  formatNumber(s.rms).c_str(), formatNumber(s.p50).c_str(),
+                  formatNumber(s.p99).c_str(), formatNumber(s.p999).c_str(),
+                  s.nanCount + s.infCount, limit.c_str(), worst.c_str());
+    out << line;
+  }
+  out << "verdict: " << (r.pass ? "PASS" : "FAIL") << "\n";
+  for (const std::string& reason : r.reasons) out << "  - " << reason << "\n";
+  return out.str();
+}
+
+}  // namespace rc

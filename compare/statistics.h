@@ -1,0 +1,44 @@
+// Pooled error statistics of one channel family (FLIP and idiff style): sums in double,
+// exact nearest-rank percentiles, the worst pixel with both values, non-finite values counted.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rc {
+
+struct WorstPixel {
+  int x = -1, y = -1;     // -1 when there was no finite error
+  double test = 0.0;      // the test image's value there (the component with the largest error)
+  double reference = 0.0;
+};
+
+struct FamilyStats {
+  std::size_t count = 0;     // finite errors pooled
+  std::size_t nanCount = 0;  // pixels where either image holds a NaN in this family
+  std::size_t infCount = 0;  // pixels where either image holds +-Inf (and no NaN)
+  double max = 0.0, mean = 0.0, rms = 0.0, p50 = 0.0, p99 = 0.0, p999 = 0.0;
+  WorstPixel worst;
+};
+
+// Accumulates per-pixel errors, then summarises them.
+class StatsAccumulator {
+ public:
+  void addError(double error, int x, int y, double test, double reference);
+  void addNan() { ++nan_; }
+  void addInf() { ++inf_; }
+  FamilyStats finish();  // consumes the stored errors
+
+ private:
+  std::vector<float> errors_;
+  double sum_ = 0.0, sumSquares_ = 0.0;
+  std::size_t nan_ = 0, inf_ = 0;
+  WorstPixel worst_;
+  double max_ = -1.0;
+};
+
+// Nearest-rank percentile (p in [0, 1]) of `values`, reordering them; 0 for an empty set.
+double percentile(std::vector<float>& values, double p);
+
+}  // namespace rc

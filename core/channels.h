@@ -1,0 +1,33 @@
+// The channel layout both renderers write and compare reads (docs/channels.md).
+// Names follow OpenEXR's layer.channel convention; ground truth is FLOAT, ids are UINT.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace rc::channels {
+
+inline constexpr const char* kTriangleId = "tri.id";  // UINT: source triangle index
+inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;  // tri.id where nothing was hit
+inline constexpr const char* kBary[3] = {"bary.b0", "bary.b1", "bary.b2"};  // FLOAT
+inline constexpr const char* kDepth = "depth.z";  // FLOAT: view-space distance along forward
+inline constexpr const char* kPreview[3] = {"R", "G", "B"};  // FLOAT: for image viewers
+inline constexpr const char* kAttributePrefix = "attr.";  // attr.<name>.<x|y|z|w>
+
+// "attr.uv.x" for component 0 of attribute "uv".
+inline std::string attributeChannel(const std::string& attribute, int component) {
+  static const char* kComponents[4] = {"x", "y", "z", "w"};
+  return std::string(kAttributePrefix) + attribute + "." + kComponents[component];
+}
+
+// Header attribute keys (provenance), all strings.
+namespace header {
+inline constexpr const char* kRenderer = "rastercheck.renderer";    // "raster" | "reference"
+inline constexpr const char* kMode = "rastercheck.mode";            // "perspective" | "affine" | "exact"
+inline constexpr const char* kPrecision = "rastercheck.precision";  // "float" | "double"
+inline constexpr const char* kScene = "rastercheck.scene";
+inline constexpr const char* kCamera = "rastercheck.camera";        // Camera::describe()
+inline constexpr const char* kVersion = "rastercheck.version";
+}  // namespace header
+
+}  // namespace rc::channels

@@ -1,0 +1,40 @@
+// Errors that carry what went wrong and where, and the exit codes the CLI maps them to.
+// Library code throws these; only app/main.cpp catches them (STYLE.md: no printing or exit()
+// in library code). Comparison outcomes are not errors: they are verdicts (compare/gate.h).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rc {
+
+// The documented exit codes of every rastercheck command (README.md, "Exit codes").
+enum class ExitCode : int {
+  kPass = 0,        // the command did what was asked; for check/compare: the gate passed
+  kGateFailed = 1,  // check/compare ran and the accuracy gate failed
+  kUsage = 2,       // bad command line: unknown option, missing or out-of-range value
+  kBadInput = 3,    // a scene, mesh or image is invalid, or two images are incompatible
+  kIo = 4,          // a file could not be read or written (missing, permissions, disk full)
+  kInternal = 5,    // a library (Embree, OpenEXR) failed in a way no input explains: a bug
+};
+
+class Error : public std::runtime_error {
+ public:
+  Error(ExitCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  ExitCode code() const { return code_; }
+
+ private:
+  ExitCode code_;
+};
+
+// `where` names the file and the place in it (line, channel, JSON pointer, ...).
+inline Error usageError(const std::string& what) { return Error(ExitCode::kUsage, what); }
+inline Error badInput(const std::string& where, const std::string& what) {
+  return Error(ExitCode::kBadInput, where + ": " + what);
+}
+inline Error ioError(const std::string& where, const std::string& what) {
+  return Error(ExitCode::kIo, where + ": " + what);
+}
+inline Error internalError(const std::string& what) { return Error(ExitCode::kInternal, what); }
+
+}  // namespace rc

@@ -1,0 +1,136 @@
+// OpenEXR input and output for Framebuffers. Every OpenEXR exception is turned into an
+// rc::Error naming the file; nothing of OpenEXR leaks past this file.
+#include "core/exr_io.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <ImfTestFile.h>
+#include <ImfThreading.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace rc {
+namespace {
+
+void setLimits() {
+  // OpenEXR accepts any declared size by default; a 30-byte file could ask for terabytes.
+  Imf::Header::setMaxImageSize(kMaxImageSide, kMaxImageSide);
+  Imf::Header::setMaxTileSize(kMaxImageSide, kMaxImageSide);
+}
+
+Imf::PixelType pixelType(ChannelType type) {
+  return type == ChannelType::kUint ? Imf::UINT : Imf::FLOAT;
+}
+
+char* planeBase(const Channel& c) {
+  return c.type == ChannelType::kUint
+             ? reinterpret_cast<char*>(const_cast<std::uint32_t*>(c.uints.data()))
+             : reinterpret_cast<char*>(const_cast<float*>(c.floats.data()));
+}
+
+// Rejects what cannot be an OpenEXR file before OpenEXR sees it, with a clear reason.
+void checkOpenable(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ioError(path, "cannot read: no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw ioError(path, "cannot read: not a file");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw ioError(path, "cannot read: permission denied");
+  if (std::filesystem::file_size(path, ec) == 0) throw badInput(path, "empty file, not an EXR");
+  bool tiled = false, deep = false, multipart = false;
+  if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multipart)) {
+    throw badInput(path, "not an OpenEXR file (bad magic number or version)");
+  }
+  if (deep) throw badInput(path, "deep EXR files are not supported");
+  if (multipart) throw badInput(path, "multi-part EXR files are not supported");
+}
+
+}  // namespace
+
+void setExrThreads(int threads) { Imf::setGlobalThreadCount(threads > 1 ? threads : 0); }
+
+void writeExr(const Framebuffer& fb, const std::string& path) {
+  setLimits();
+  AtomicOutput out(path);
+  try {
+    Imf::Header header(fb.width(), fb.height());
+    header.compression() = Imf::ZIP_COMPRESSION;  // lossless for FLOAT and UINT
+    Imf::FrameBuffer slices;
+    const std::size_t xStride = 4, yStride = 4 * std::size_t(fb.width());
+    for (const Channel& c : fb.channels()) {
+      header.channels().insert(c.name, Imf::Channel(pixelType(c.type)));
+      slices.insert(c.name, Imf::Slice(pixelType(c.type), planeBase(c), xStride, yStride));
+    }
+    for (const auto& [key, value] : fb.attributes) {
+      header.insert(key, Imf::StringAttribute(value));
+    }
+    Imf::OutputFile file(out.tempPath().c_str(), header);
+    file.setFrameBuffer(slices);
+    file.writePixels(fb.height());
+  } catch (const std::exception& e) {
+    throw ioError(path, std::string("cannot write EXR: ") + e.what());
+  }
+  out.commit();
+}
+
+Framebuffer readExr(const std::string& path) {
+  setLimits();
+  checkOpenable(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide) {
+      throw badInput(path + ": dataWindow", "absurd size " + std::to_string(width) + "x" +
+                                                std::to_string(height));
+    }
+    Framebuffer fb(static_cast<int>(width), static_cast<int>(height));
+    Imf::FrameBuffer slices;
+    const std::size_t xStride = 4, yStride = 4 * std::size_t(width);
+    // Slices are addressed in data-window coordinates, so the base is shifted by its origin.
+    const std::ptrdiff_t originOffset =
+        -(std::ptrdiff_t(window.min.x) * std::ptrdiff_t(xStride) +
+          std::ptrdiff_t(window.min.y) * std::ptrdiff_t(yStride));
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+      const std::string name = it.name();
+      const Imf::Channel& ch = it.channel();
+      if (ch.xSampling != 1 || ch.ySampling != 1) {
+        throw badInput(path + ": channel " + name, "subsampled channels are not supported");
+      }
+      char* base = nullptr;
+      if (ch.type == Imf::UINT) {
+        base = reinterpret_cast<char*>(fb.addUint(name));
+      } else if (ch.type == Imf::FLOAT) {
+        base = reinterpret_cast<char*>(fb.addFloat(name));
+      } else {
+        throw badInput(path + ": channel " + name,
+                       "is HALF; rastercheck compares FLOAT data (HALF cannot hold ground truth)");
+      }
+      slices.insert(name, Imf::Slice(ch.type, base + originOffset, xStride, yStride));
+    }
+    for (auto it = file.header().begin(); it != file.header().end(); ++it) {
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+        fb.attributes[it.name()] = s->value();
+      }
+    }
+    file.setFrameBuffer(slices);
+    file.readPixels(window.min.y, window.max.y);
+    if (!file.isComplete()) throw badInput(path, "truncated: some pixel data is missing");
+    return fb;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw badInput(path, std::string("invalid EXR: ") + e.what());
+  }
+}
+
+}  // namespace rc

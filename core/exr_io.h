@@ -1,0 +1,27 @@
+// Reading and writing Framebuffers as multi-channel OpenEXR files. This pair of functions
+// (and exr_io.cpp) is the only place in the project that includes OpenEXR.
+#pragma once
+
+#include <string>
+
+#include "core/framebuffer.h"
+
+namespace rc {
+
+// The largest image either function accepts, per side (also set as OpenEXR's own limit, so a
+// huge declared data window in a tiny file is refused before anything is allocated).
+inline constexpr int kMaxImageSide = 16384;
+
+// Writes every channel losslessly (ZIP) and every attribute as a string attribute, through a
+// temporary file renamed into place. Throws ioError on failure; nothing partial is left.
+void writeExr(const Framebuffer& fb, const std::string& path);
+
+// Reads a scanline or tiled single-part EXR whose channels are all FLOAT or UINT.
+// Throws ioError when the file cannot be opened, badInput naming the file and the channel or
+// attribute when it is not a complete, valid EXR in that form.
+Framebuffer readExr(const std::string& path);
+
+// Sets the number of threads OpenEXR uses for (de)compression.
+void setExrThreads(int threads);
+
+}  // namespace rc

@@ -1,0 +1,52 @@
+// A minimal parallel-for over an index range. Work items are handed out dynamically, but
+// every caller writes disjoint outputs per item, so results never depend on the thread count
+// or on scheduling (STYLE.md: outputs bit-identical for 1 and N threads).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace rc {
+
+// The number of worker threads to use when the user asks for 0 ("all cores").
+inline int resolveThreadCount(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Calls fn(i) for every i in [0, count) on up to `threads` threads. The first exception
+// thrown by any call is rethrown on the calling thread after all workers stop.
+template <typename Fn>
+void parallelFor(int count, int threads, Fn&& fn) {
+  threads = std::min(resolveThreadCount(threads), std::max(count, 1));
+  if (threads <= 1) {
+    for (int i = 0; i < count; ++i) fn(i);
+    return;
+  }
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  auto worker = [&] {
+    for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) {
+      try {
+        fn(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+        next.store(count);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(threads - 1);
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace rc

@@ -1,0 +1,71 @@
+// Exact coverage: vertices snapped to a fixed-point grid with `subpixelBits` fraction bits,
+// int64 edge functions, and the top-left fill rule, so a pixel centre on an edge shared by two
+// triangles belongs to exactly one of them (meshoptimizer's rasterizer and D3D's rules).
+//
+// Range: snapped coordinates satisfy |X| <= 2^29 (the guard band in clip.h ensures it), so
+// coordinate differences fit in 31 bits, products in 61 bits and the sum of two in 62 bits:
+// every edge value is exact in int64.
+#pragma once
+
+#include <cstdint>
+
+namespace rc {
+
+struct EdgeFunctions {
+  // E_i(p) = a[i] * (p.x - ox[i]) + b[i] * (p.y - oy[i]) for the edge opposite vertex i,
+  // sign-normalised so E_i > 0 inside; p in fixed point. Inside iff E_i + bias[i] >= 0 for
+  // all i, where bias is 0 on top and left edges (a centre exactly on them is in) and -1 on
+  // the others (a centre exactly on them is out).
+  std::int64_t a[3], b[3], ox[3], oy[3], bias[3];
+};
+
+// Edge functions of the snapped triangle (x[i], y[i]), raster space with y down. Returns false
+// for a zero-area triangle, which covers nothing.
+inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3],
+                              EdgeFunctions& e) {
+  const std::int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  if (area == 0) return false;
+  const std::int64_t sign = area > 0 ? 1 : -1;
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3, to = (i + 2) % 3;  // edge opposite vertex i
+    // (to - from) x (p - from): a = -(dy), b = dx, sign-normalised.
+    e.a[i] = sign * (y[from] - y[to]);
+    e.b[i] = sign * (x[to] - x[from]);
+    e.ox[i] = x[from];
+    e.oy[i] = y[from];
+    // With positive orientation in y-down raster space, a top edge runs horizontally in +x
+    // (a == 0, b > 0) and a left edge runs upwards (dy < 0, i.e. a > 0).
+    const bool topLeft = e.a[i] > 0 || (e.a[i] == 0 && e.b[i] > 0);
+    e.bias[i] = topLeft ? 0 : -1;
+  }
+  return true;
+}
+
+// Fixed-point position of pixel centre coordinate `pixel` (x + 0.5) with `bits` fraction bits.
+inline std::int64_t pixelCenterFixed(int pixel, int bits) {
+  return (2 * std::int64_t(pixel) + 1) << (bits - 1);
+}
+
+// Calls fn(x, y) for every pixel centre in the inclusive rectangle that the triangle covers.
+template <typename Fn>
+inline void forEachCoveredPixel(const EdgeFunctions& e, int bits, int x0, int y0, int x1, int y1,
+                                Fn&& fn) {
+  const std::int64_t step = std::int64_t(1) << bits;
+  const std::int64_t px0 = pixelCenterFixed(x0, bits);
+  for (int y = y0; y <= y1; ++y) {
+    const std::int64_t py = pixelCenterFixed(y, bits);
+    std::int64_t row[3], dx[3];
+    for (int i = 0; i < 3; ++i) {
+      row[i] = e.a[i] * (px0 - e.ox[i]) + e.b[i] * (py - e.oy[i]) + e.bias[i];
+      dx[i] = e.a[i] * step;
+    }
+    for (int x = x0; x <= x1; ++x) {
+      if ((row[0] | row[1] | row[2]) >= 0) fn(x, y);  // all three non-negative
+      row[0] += dx[0];
+      row[1] += dx[1];
+      row[2] += dx[2];
+    }
+  }
+}
+
+}  // namespace rc

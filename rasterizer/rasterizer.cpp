@@ -1,0 +1,284 @@
+// The rasterizer pipeline. Stages, each in its own loop so that per-triangle work never
+// enters the pixel loops:
+//   1. transform: world -> clip, in double through the camera, rounded once to Real;
+//   2. clip + set-up, in parallel blocks of triangles, concatenated in triangle order;
+//   3. binning of set-ups into 64x64 tiles, in set-up order;
+//   4. per tile (in parallel): coverage + depth test into a tile-local visibility buffer
+//      (set-up index + 1/w), then resolve: barycentrics, depth and attributes for the winner.
+// Tiles own disjoint pixels and visit set-ups in triangle order, so the output does not depend
+// on the thread count; depth ties go to the lower triangle index.
+#include "rasterizer/rasterizer.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/preview.h"
+#include "rasterizer/interpolate.h"
+#include "rasterizer/setup.h"
+
+namespace rc {
+
+const char* interpolationName(Interpolation mode) {
+  return mode == Interpolation::kPerspective ? "perspective" : "affine";
+}
+const char* precisionName(Precision precision) {
+  return precision == Precision::kFloat ? "float" : "double";
+}
+
+namespace {
+
+constexpr int kTileSize = 64;
+constexpr int kTrianglesPerBlock = 8192;
+constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+
+template <typename Real>
+using Vec4 = glm::vec<4, Real>;
+
+template <typename Real>
+struct SetupBlock {
+  std::vector<TriangleSetup<Real>> setups;
+  std::vector<glm::mat<3, 3, Real>> clipMaps;  // columns: source barycentrics of sub-vertices
+};
+
+template <typename Real>
+struct Pipeline {
+  const Scene& scene;
+  const RasterOptions& options;
+  int width, height;
+  ClipVolume<Real> volume;
+  std::vector<Vec4<Real>> clip;  // per mesh vertex
+  std::vector<TriangleSetup<Real>> setups;
+  std::vector<glm::mat<3, 3, Real>> clipMaps;
+
+  Pipeline(const Scene& s, const RasterOptions& o)
+      : scene(s), options(o), width(s.camera.width()), height(s.camera.height()) {
+    // Guard band: 2^(28 - bits) pixels from the viewport centre, so that snapped positions
+    // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it.
+    const double guardPixels = std::ldexp(1.0, 28 - o.subpixelBits);
+    if (std::max(width, height) > guardPixels) {
+      throw usageError("--subpixel-bits " + std::to_string(o.subpixelBits) +
+                       " is too fine for a " + std::to_string(width) + "x" +
+                       std::to_string(height) + " image (exact int64 edges need at most " +
+                       std::to_string(28 - int(std::ceil(std::log2(std::max(width, height))))) +
+                       " bits)");
+    }
+    volume.zNear = Real(s.camera.zNear());
+    volume.zFar = std::isinf(s.camera.zFar()) ? std::numeric_limits<Real>::infinity()
+                                              : Real(s.camera.zFar());
+    volume.guard = Real(2.0 * guardPixels / std::max(width, height));
+  }
+
+  void transform() {
+    const glm::dmat4 clipFromWorld = scene.camera.clipFromWorld();
+    const auto& positions = scene.mesh.positions;
+    clip.resize(positions.size());
+    const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
+    parallelFor(blocks, options.threads, [&](int b) {
+      const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
+      for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
+        clip[i] = Vec4<Real>(clipFromWorld * glm::dvec4(glm::dvec3(positions[i]), 1.0));
+      }
+    });
+  }
+
+  void emit(SetupBlock<Real>& block, std::uint32_t triangle, const Vec4<Real> sub[3],
+            int clipMap) const {
+    glm::vec<2, Real> raster[3];
+    for (int i = 0; i < 3; ++i) {
+      raster[i].x = scene.camera.rasterXFromNdc(sub[i].x / sub[i].w);
+      raster[i].y = scene.camera.rasterYFromNdc(sub[i].y / sub[i].w);
+    }
+    TriangleSetup<Real> s;
+    if (!setupTriangle(sub, raster, SetupContext<Real>{width, height, options.subpixelBits}, s)) {
+      return;
+    }
+    s.triangle = triangle;
+    s.clipMap = clipMap;
+    block.setups.push_back(s);
+  }
+
+  void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
+    const auto& triangles = scene.mesh.triangles;
+    for (std::size_t t = begin; t < end; ++t) {
+      const Vec4<Real> v[3] = {clip[triangles[t].x], clip[triangles[t].y], clip[triangles[t].z]};
+      const unsigned c0 = volume.outcode(v[0]), c1 = volume.outcode(v[1]), c2 = volume.outcode(v[2]);
+      if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
+      const auto id = static_cast<std::uint32_t>(t);
+      if ((c0 | c1 | c2) == 0) {
+        emit(block, id, v, -1);
+        continue;
+      }
+      const ClipVertex<Real> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
+      ClipVertex<Real> poly[kMaxClipVertices];
+      const int n = clipPolygon(in, volume, c0 | c1 | c2, poly);
+      for (int k = 1; k + 1 < n; ++k) {  // fan around poly[0]
+        const Vec4<Real> sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
+        block.clipMaps.push_back(glm::mat<3, 3, Real>(poly[0].bary, poly[k].bary, poly[k + 1].bary));
+        emit(block, id, sub, int(block.clipMaps.size()) - 1);
+      }
+    }
+  }
+
+  void setupAll() {
+    const std::size_t count = scene.mesh.triangles.size();
+    const int blocks = int((count + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
+    std::vector<SetupBlock<Real>> parts(blocks);
+    parallelFor(blocks, options.threads, [&](int b) {
+      const std::size_t begin = std::size_t(b) * kTrianglesPerBlock;
+      parts[b].setups.reserve(kTrianglesPerBlock);
+      setupTriangleRange(begin, std::min(count, begin + kTrianglesPerBlock), parts[b]);
+    });
+    std::size_t total = 0;
+    for (const SetupBlock<Real>& part : parts) total += part.setups.size();
+    setups.reserve(total);
+    for (SetupBlock<Real>& part : parts) {  // in block order: triangle order is kept
+      const int offset = int(clipMaps.size());
+      for (TriangleSetup<Real>& s : part.setups) {
+        if (s.clipMap >= 0) s.clipMap += offset;
+        setups.push_back(s);
+      }
+      clipMaps.insert(clipMaps.end(), part.clipMaps.begin(), part.clipMaps.end());
+    }
+  }
+};
+
+// Output planes, resolved once before the pixel loops.
+struct OutputPlanes {
+  std::uint32_t* id;
+  float* bary[3];
+  float* depth;
+  struct AttributeOut {
+    const float* values;  // per vertex, `components` each
+    int components;
+    float* out[4];
+  };
+  std::vector<AttributeOut> attributes;
+};
+
+OutputPlanes addOutputChannels(Framebuffer& fb, const Mesh& mesh) {
+  OutputPlanes planes;
+  planes.id = fb.addUint(channels::kTriangleId, channels::kNoTriangle);
+  for (int i = 0; i < 3; ++i) planes.bary[i] = fb.addFloat(channels::kBary[i]);
+  planes.depth = fb.addFloat(channels::kDepth);
+  for (const Attribute& a : mesh.attributes) {
+    OutputPlanes::AttributeOut out{a.values.data(), a.components, {}};
+    for (int c = 0; c < a.components; ++c) {
+      out.out[c] = fb.addFloat(channels::attributeChannel(a.name, c));
+    }
+    planes.attributes.push_back(out);
+  }
+  return planes;
+}
+
+template <typename Real>
+void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const std::uint32_t* binEnd,
+                int tileX, int tileY, const OutputPlanes& out) {
+  const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
+  const int x1 = std::min(p.width, x0 + kTileSize) - 1, y1 = std::min(p.height, y0 + kTileSize) - 1;
+  std::array<std::uint32_t, kTileSize * kTileSize> winner;
+  std::array<Real, kTileSize * kTileSize> nearest;  // 1/w of the winner: larger is nearer
+  winner.fill(kEmpty);
+  nearest.fill(-std::numeric_limits<Real>::infinity());
+
+  for (const std::uint32_t* it = binBegin; it != binEnd; ++it) {
+    const std::uint32_t index = *it;
+    const TriangleSetup<Real>& s = p.setups[index];
+    EdgeFunctions edges{};
+    makeEdgeFunctions(s.xFixed, s.yFixed, edges);
+    forEachCoveredPixel(edges, p.options.subpixelBits, std::max(x0, s.minX), std::max(y0, s.minY),
+                        std::min(x1, s.maxX), std::min(y1, s.maxY), [&](int x, int y) {
+                          const Real z = inverseDepthAt(s, Real(x) + Real(0.5), Real(y) + Real(0.5));
+                          const int local = (y - y0) * kTileSize + (x - x0);
+                          if (z > nearest[local]) {  // strict: the earlier triangle keeps a tie
+                            nearest[local] = z;
+                            winner[local] = index;
+                          }
+                        });
+  }
+
+  const bool perspective = p.options.interpolation == Interpolation::kPerspective;
+  const auto& triangles = p.scene.mesh.triangles;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const std::uint32_t index = winner[(y - y0) * kTileSize + (x - x0)];
+      if (index == kEmpty) continue;
+      const TriangleSetup<Real>& s = p.setups[index];
+      const Real px = Real(x) + Real(0.5), py = Real(y) + Real(0.5);
+      const Real l[3] = {edgeValue(s, 0, px, py) * s.invArea, edgeValue(s, 1, px, py) * s.invArea,
+                         edgeValue(s, 2, px, py) * s.invArea};
+      const Recovered<Real> r = perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
+      glm::vec<3, Real> b(r.b[0], r.b[1], r.b[2]);
+      if (s.clipMap >= 0) b = p.clipMaps[s.clipMap] * b;  // sub-triangle -> source triangle
+      const std::size_t pixel = std::size_t(y) * p.width + x;
+      out.id[pixel] = s.triangle;
+      for (int i = 0; i < 3; ++i) out.bary[i][pixel] = float(b[i]);
+      out.depth[pixel] = float(r.depth);
+      const glm::uvec3& tri = triangles[s.triangle];
+      for (const OutputPlanes::AttributeOut& a : out.attributes) {
+        const float* v0 = a.values + std::size_t(tri.x) * a.components;
+        const float* v1 = a.values + std::size_t(tri.y) * a.components;
+        const float* v2 = a.values + std::size_t(tri.z) * a.components;
+        for (int c = 0; c < a.components; ++c) {
+          a.out[c][pixel] = float(b[0] * Real(v0[c]) + b[1] * Real(v1[c]) + b[2] * Real(v2[c]));
+        }
+      }
+    }
+  }
+}
+
+template <typename Real>
+Framebuffer rasterizeAs(const Scene& scene, const RasterOptions& options) {
+  Pipeline<Real> p(scene, options);
+  p.transform();
+  p.setupAll();
+
+  // Binning by counting sort: one pass counts set-ups per tile, a prefix sum places each
+  // tile's list in one flat array, a second pass fills it in set-up (= triangle) order.
+  const int tilesX = (p.width + kTileSize - 1) / kTileSize;
+  const int tilesY = (p.height + kTileSize - 1) / kTileSize;
+  std::vector<std::size_t> binStart(std::size_t(tilesX) * tilesY + 1, 0);
+  const auto forEachTile = [&](const TriangleSetup<Real>& s, auto&& fn) {
+    for (int ty = s.minY / kTileSize; ty <= s.maxY / kTileSize; ++ty) {
+      for (int tx = s.minX / kTileSize; tx <= s.maxX / kTileSize; ++tx) fn(std::size_t(ty) * tilesX + tx);
+    }
+  };
+  for (const TriangleSetup<Real>& s : p.setups) forEachTile(s, [&](std::size_t t) { ++binStart[t + 1]; });
+  for (std::size_t t = 1; t < binStart.size(); ++t) binStart[t] += binStart[t - 1];
+  std::vector<std::uint32_t> binned(binStart.back());
+  std::vector<std::size_t> cursor(binStart.begin(), binStart.end() - 1);
+  for (std::size_t i = 0; i < p.setups.size(); ++i) {
+    forEachTile(p.setups[i], [&](std::size_t t) { binned[cursor[t]++] = std::uint32_t(i); });
+  }
+
+  Framebuffer fb(p.width, p.height);
+  const OutputPlanes out = addOutputChannels(fb, scene.mesh);
+  parallelFor(tilesX * tilesY, options.threads, [&](int tile) {
+    const std::uint32_t* begin = binned.data() + binStart[tile];
+    renderTile(p, begin, begin + (binStart[tile + 1] - binStart[tile]), tile % tilesX, tile / tilesX, out);
+  });
+  return fb;
+}
+
+}  // namespace
+
+Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {
+  if (options.subpixelBits < 1 || options.subpixelBits > 16) {
+    throw usageError("--subpixel-bits must be 1..16, got " + std::to_string(options.subpixelBits));
+  }
+  Framebuffer fb = options.precision == Precision::kFloat ? rasterizeAs<float>(scene, options)
+                                                          : rasterizeAs<double>(scene, options);
+  addPreview(fb);
+  fb.attributes[channels::header::kRenderer] = "raster";
+  fb.attributes[channels::header::kMode] = interpolationName(options.interpolation);
+  fb.attributes[channels::header::kPrecision] = precisionName(options.precision);
+  fb.attributes["rastercheck.subpixelBits"] = std::to_string(options.subpixelBits);
+  fb.attributes[channels::header::kScene] = scene.name;
+  fb.attributes[channels::header::kCamera] = scene.camera.describe();
+  return fb;
+}
+
+}  // namespace rc

@@ -1,0 +1,73 @@
+// The one camera contract both renderers share (docs/camera.md). Pixel (x, y) has row 0 at
+// the top and is sampled at its centre (x + 0.5, y + 0.5). View space is right-handed and
+// looks down -Z. Depth is the view-space distance along the camera's forward axis, which is
+// also clip-space w. Nothing outside this class computes a projection or a camera ray.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <limits>
+#include <string>
+
+namespace rc {
+
+struct CameraSpec {
+  glm::dvec3 eye{0.0, 0.0, 5.0};     // world position of the centre of projection
+  glm::dvec3 target{0.0, 0.0, 0.0};  // a world point the camera looks at
+  glm::dvec3 up{0.0, 1.0, 0.0};      // world direction that appears upwards on screen
+  double fovYDegrees = 45.0;         // vertical field of view, in (0, 180)
+  double zNear = 0.1;                // nearest depth drawn, > 0
+  double zFar = std::numeric_limits<double>::infinity();  // farthest depth drawn, or +inf
+  int width = 640;                   // image size in pixels
+  int height = 480;
+};
+
+struct CameraRay {
+  glm::dvec3 origin;     // the eye
+  glm::dvec3 direction;  // not normalised: direction . forward == 1, so t is depth
+  double tNear;          // depth == zNear
+  double tFar;           // depth == zFar (may be +inf)
+};
+
+class Camera {
+ public:
+  // Validates the spec; throws badInput("<where>: camera", reason) for a degenerate camera.
+  explicit Camera(const CameraSpec& spec, const std::string& where = "camera");
+
+  const CameraSpec& spec() const { return spec_; }
+  int width() const { return spec_.width; }
+  int height() const { return spec_.height; }
+  double zNear() const { return spec_.zNear; }
+  double zFar() const { return spec_.zFar; }
+  const glm::dvec3& forward() const { return forward_; }
+
+  glm::dmat4 viewFromWorld() const;
+  // OpenGL-style perspective (infinite when zFar is infinite); its w row yields w = depth.
+  glm::dmat4 clipFromView() const;
+  glm::dmat4 clipFromWorld() const { return clipFromView() * viewFromWorld(); }
+
+  // Raster position of a pixel's sample: its centre.
+  static glm::dvec2 pixelCenter(int x, int y) { return {x + 0.5, y + 0.5}; }
+  // Raster position (pixels, y down) of normalised device coordinates (y up).
+  template <typename Real>
+  Real rasterXFromNdc(Real ndcX) const {
+    return (ndcX + Real(1)) * Real(0.5) * Real(spec_.width);
+  }
+  template <typename Real>
+  Real rasterYFromNdc(Real ndcY) const {
+    return (Real(1) - ndcY) * Real(0.5) * Real(spec_.height);
+  }
+
+  // The ray through the centre of pixel (x, y), in double.
+  CameraRay rayThroughPixel(int x, int y) const;
+
+  // One line, full precision: "eye=(..) target=(..) up=(..) fovy=.. near=.. far=.. size=WxH".
+  std::string describe() const;
+
+ private:
+  CameraSpec spec_;
+  glm::dvec3 forward_, right_, up_;  // orthonormal camera basis in world space
+  double tanHalfFovY_ = 0.0;
+  double aspect_ = 1.0;
+};
+
+}  // namespace rc

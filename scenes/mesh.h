@@ -1,0 +1,34 @@
+// The renderer-neutral triangle mesh: float positions, triangles as index triples, and any
+// number of named per-vertex float attributes. A mesh carries only the attributes its scene
+// declares; those are exactly the ones interpolated and written.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace rc {
+
+struct Attribute {
+  std::string name;           // channel-safe: [A-Za-z0-9_]+, e.g. "uv", "normal", "color"
+  int components = 0;         // 1..4
+  std::vector<float> values;  // vertexCount * components, vertex-major
+};
+
+struct Mesh {
+  std::vector<glm::vec3> positions;    // world space
+  std::vector<glm::uvec3> triangles;   // indices into positions; (b0, b1, b2) follow this order
+  std::vector<Attribute> attributes;
+
+  std::size_t vertexCount() const { return positions.size(); }
+  std::size_t triangleCount() const { return triangles.size(); }
+  const Attribute* findAttribute(const std::string& name) const;
+  Attribute& addAttribute(const std::string& name, int components);  // sized for the vertices
+};
+
+// Throws badInput(where + ...) naming the first problem: a non-finite or out-of-range
+// position, an index out of range, an attribute of the wrong size or with a bad name.
+void validateMesh(const Mesh& mesh, const std::string& where);
+
+}  // namespace rc
