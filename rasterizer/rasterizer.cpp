@@ -1,7 +1,8 @@
 // The rasterizer pipeline. Stages, each in its own loop so that per-triangle work never
 // enters the pixel loops:
-//   1. transform: world -> clip, in double through the camera, rounded once to Real;
-//   2. clip + set-up, in parallel blocks of triangles, concatenated in triangle order;
+//   1. transform: world -> clip, in double through the camera;
+//   2. clip + set-up in double, in parallel blocks of triangles, concatenated in triangle
+//      order; only the per-pixel coefficients are rounded to Real (setup.h);
 //   3. binning of set-ups into 64x64 tiles, in set-up order;
 //   4. per tile (in parallel): coverage + depth test into a tile-local visibility buffer
 //      (set-up index + 1/w), then resolve: barycentrics, depth and attributes for the winner.
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/preview.h"
+#include "rasterizer/clip.h"
 #include "rasterizer/interpolate.h"
 #include "rasterizer/setup.h"
 
@@ -36,9 +38,6 @@ constexpr int kTrianglesPerBlock = 8192;
 constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
 
 template <typename Real>
-using Vec4 = glm::vec<4, Real>;
-
-template <typename Real>
 struct SetupBlock {
   std::vector<TriangleSetup<Real>> setups;
   std::vector<glm::mat<3, 3, Real>> clipMaps;  // columns: source barycentrics of sub-vertices
@@ -49,8 +48,8 @@ struct Pipeline {
   const Scene& scene;
   const RasterOptions& options;
   int width, height;
-  ClipVolume<Real> volume;
-  std::vector<Vec4<Real>> clip;  // per mesh vertex
+  ClipVolume<double> volume;
+  std::vector<glm::dvec4> clip;  // per mesh vertex
   std::vector<TriangleSetup<Real>> setups;
   std::vector<glm::mat<3, 3, Real>> clipMaps;
 
@@ -66,10 +65,9 @@ struct Pipeline {
                        std::to_string(28 - int(std::ceil(std::log2(std::max(width, height))))) +
                        " bits)");
     }
-    volume.zNear = Real(s.camera.zNear());
-    volume.zFar = std::isinf(s.camera.zFar()) ? std::numeric_limits<Real>::infinity()
-                                              : Real(s.camera.zFar());
-    volume.guard = Real(2.0 * guardPixels / std::max(width, height));
+    volume.zNear = s.camera.zNear();
+    volume.zFar = s.camera.zFar();
+    volume.guard = 2.0 * guardPixels / std::max(width, height);
   }
 
   void transform() {
@@ -80,20 +78,20 @@ struct Pipeline {
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
-        clip[i] = Vec4<Real>(clipFromWorld * glm::dvec4(glm::dvec3(positions[i]), 1.0));
+        clip[i] = clipFromWorld * glm::dvec4(glm::dvec3(positions[i]), 1.0);
       }
     });
   }
 
-  void emit(SetupBlock<Real>& block, std::uint32_t triangle, const Vec4<Real> sub[3],
+  void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3],
             int clipMap) const {
-    glm::vec<2, Real> raster[3];
+    glm::dvec2 raster[3];
     for (int i = 0; i < 3; ++i) {
       raster[i].x = scene.camera.rasterXFromNdc(sub[i].x / sub[i].w);
       raster[i].y = scene.camera.rasterYFromNdc(sub[i].y / sub[i].w);
     }
     TriangleSetup<Real> s;
-    if (!setupTriangle(sub, raster, SetupContext<Real>{width, height, options.subpixelBits}, s)) {
+    if (!setupTriangle(sub, raster, SetupContext{width, height, options.subpixelBits}, s)) {
       return;
     }
     s.triangle = triangle;
@@ -104,7 +102,7 @@ struct Pipeline {
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
     const auto& triangles = scene.mesh.triangles;
     for (std::size_t t = begin; t < end; ++t) {
-      const Vec4<Real> v[3] = {clip[triangles[t].x], clip[triangles[t].y], clip[triangles[t].z]};
+      const glm::dvec4 v[3] = {clip[triangles[t].x], clip[triangles[t].y], clip[triangles[t].z]};
       const unsigned c0 = volume.outcode(v[0]), c1 = volume.outcode(v[1]), c2 = volume.outcode(v[2]);
       if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
       const auto id = static_cast<std::uint32_t>(t);
@@ -112,12 +110,13 @@ struct Pipeline {
         emit(block, id, v, -1);
         continue;
       }
-      const ClipVertex<Real> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
-      ClipVertex<Real> poly[kMaxClipVertices];
+      const ClipVertex<double> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
+      ClipVertex<double> poly[kMaxClipVertices];
       const int n = clipPolygon(in, volume, c0 | c1 | c2, poly);
       for (int k = 1; k + 1 < n; ++k) {  // fan around poly[0]
-        const Vec4<Real> sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
-        block.clipMaps.push_back(glm::mat<3, 3, Real>(poly[0].bary, poly[k].bary, poly[k + 1].bary));
+        const glm::dvec4 sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
+        block.clipMaps.push_back(
+            glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)));
         emit(block, id, sub, int(block.clipMaps.size()) - 1);
       }
     }
@@ -188,10 +187,12 @@ void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const st
     const std::uint32_t index = *it;
     const TriangleSetup<Real>& s = p.setups[index];
     EdgeFunctions edges{};
-    makeEdgeFunctions(s.xFixed, s.yFixed, edges);
+    const std::int64_t xf[3] = {s.xFixed[0], s.xFixed[1], s.xFixed[2]};
+    const std::int64_t yf[3] = {s.yFixed[0], s.yFixed[1], s.yFixed[2]};
+    makeEdgeFunctions(xf, yf, edges);
     forEachCoveredPixel(edges, p.options.subpixelBits, std::max(x0, s.minX), std::max(y0, s.minY),
                         std::min(x1, s.maxX), std::min(y1, s.maxY), [&](int x, int y) {
-                          const Real z = inverseDepthAt(s, Real(x) + Real(0.5), Real(y) + Real(0.5));
+                          const Real z = inverseDepthAt(s, centerX(s, x), centerY(s, y));
                           const int local = (y - y0) * kTileSize + (x - x0);
                           if (z > nearest[local]) {  // strict: the earlier triangle keeps a tie
                             nearest[local] = z;
@@ -207,7 +208,7 @@ void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const st
       const std::uint32_t index = winner[(y - y0) * kTileSize + (x - x0)];
       if (index == kEmpty) continue;
       const TriangleSetup<Real>& s = p.setups[index];
-      const Real px = Real(x) + Real(0.5), py = Real(y) + Real(0.5);
+      const Real px = centerX(s, x), py = centerY(s, y);
       const Real l[3] = {edgeValue(s, 0, px, py) * s.invArea, edgeValue(s, 1, px, py) * s.invArea,
                          edgeValue(s, 2, px, py) * s.invArea};
       const Recovered<Real> r = perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
