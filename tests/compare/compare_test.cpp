@@ -1,0 +1,182 @@
+// compare on synthetic images whose differences are known exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "compare/compare.h"
+#include "compare/report.h"
+#include "core/channels.h"
+#include "core/error.h"
+
+namespace rc {
+namespace {
+
+constexpr int kW = 10, kH = 10;
+
+// Every pixel covered by triangle 1 with b = (0.25, 0.25, 0.5), depth 4, uv = (x, y).
+Framebuffer image() {
+  Framebuffer fb(kW, kH);
+  fb.addUint(channels::kTriangleId, 1);
+  fb.addFloat(channels::kBary[0], 0.25f);
+  fb.addFloat(channels::kBary[1], 0.25f);
+  fb.addFloat(channels::kBary[2], 0.5f);
+  fb.addFloat(channels::kDepth, 4.0f);
+  float* u = fb.addFloat(channels::attributeChannel("uv", 0));
+  float* v = fb.addFloat(channels::attributeChannel("uv", 1));
+  for (int i = 0; i < kW * kH; ++i) {
+    u[i] = float(i % kW);
+    v[i] = float(i / kW);
+  }
+  return fb;
+}
+
+float& at(Framebuffer& fb, const std::string& channel, int x, int y) {
+  return fb.find(channel)->floats[std::size_t(y) * kW + x];
+}
+std::uint32_t& idAt(Framebuffer& fb, int x, int y) {
+  return fb.find(channels::kTriangleId)->uints[std::size_t(y) * kW + x];
+}
+
+const FamilyReport& family(const CompareReport& r, const std::string& name) {
+  for (const FamilyReport& f : r.families) {
+    if (f.name == name) return f;
+  }
+  throw std::runtime_error("no family " + name);
+}
+
+TEST(Compare, IdenticalImagesHaveZeroErrorAndPass) {
+  const CompareReport r = compareImages(image(), "a.exr", image(), "b.exr", Thresholds{}, nullptr);
+  EXPECT_TRUE(r.pass);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kSameTriangle)], std::size_t(kW * kH));
+  for (const FamilyReport& f : r.families) {
+    EXPECT_EQ(f.stats.max, 0.0) << f.name;
+    EXPECT_EQ(f.stats.count, std::size_t(kW * kH)) << f.name;
+  }
+  EXPECT_EQ(r.families.size(), 3u);  // bary, depth, attr.uv
+}
+
+TEST(Compare, OneKnownDifferenceGivesKnownStatistics) {
+  Framebuffer test = image();
+  at(test, channels::kBary[0], 3, 4) = 0.25f + 0x1p-10f;  // exact in float
+  at(test, channels::kDepth, 6, 7) = 4.0f + 0x1p-10f;     // relative error 2^-12
+  at(test, channels::attributeChannel("uv", 1), 2, 2) = 2.0f + 0.5f;
+  const CompareReport r = compareImages(test, "t.exr", image(), "r.exr", Thresholds{}, nullptr);
+  const FamilyStats& bary = family(r, "bary").stats;
+  EXPECT_EQ(bary.max, 0x1p-10);
+  EXPECT_EQ(bary.worst.x, 3);
+  EXPECT_EQ(bary.worst.y, 4);
+  EXPECT_EQ(bary.worst.test, 0.25 + 0x1p-10);
+  EXPECT_EQ(bary.worst.reference, 0.25);
+  EXPECT_DOUBLE_EQ(bary.mean, 0x1p-10 / 100);
+  EXPECT_DOUBLE_EQ(bary.rms, 0x1p-10 / 10);
+  EXPECT_EQ(bary.p50, 0.0);
+  EXPECT_EQ(bary.p99, 0.0);     // nearest rank 99 of 100 is still zero
+  EXPECT_EQ(bary.p999, 0x1p-10);  // rank 100
+  EXPECT_EQ(family(r, "depth").stats.max, 0x1p-12);
+  const FamilyReport& uv = family(r, "attr.uv");
+  EXPECT_EQ(uv.stats.max, 0.5);
+  EXPECT_EQ(uv.range, 9.0);  // uv spans 0..9 in the reference
+  EXPECT_DOUBLE_EQ(uv.gated, 0.5 / 9.0);
+  EXPECT_FALSE(r.pass);
+  EXPECT_EQ(r.reasons.size(), 3u);  // bary, depth, attr.uv
+}
+
+TEST(Compare, PixelClassesAreCounted) {
+  Framebuffer test = image(), ref = image();
+  idAt(test, 0, 0) = 2;                        // different triangle
+  idAt(test, 1, 0) = channels::kNoTriangle;    // reference only
+  idAt(ref, 2, 0) = channels::kNoTriangle;     // test only
+  idAt(test, 3, 0) = idAt(ref, 3, 0) = channels::kNoTriangle;  // both empty
+  const CompareReport r = compareImages(test, "t", ref, "r", Thresholds{}, nullptr);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kDifferentTriangle)], 1u);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kReferenceOnly)], 1u);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kTestOnly)], 1u);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kBothEmpty)], 1u);
+  EXPECT_EQ(r.classCounts[int(PixelClass::kSameTriangle)], 96u);
+  EXPECT_DOUBLE_EQ(r.disagreementFraction, 1.0 / 99.0);
+  EXPECT_DOUBLE_EQ(r.coverageFraction, 2.0 / 99.0);
+  EXPECT_FALSE(r.pass);  // both fractions exceed the defaults
+}
+
+TEST(Compare, NanAndInfNeverPassEvenWithHugeThresholds) {
+  Thresholds lax{1e30, 1e30, 1e30, 1.0, 1.0};
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    for (bool inReference : {false, true}) {
+      Framebuffer test = image(), ref = image();
+      at(inReference ? ref : test, channels::kBary[1], 5, 5) = bad;
+      const CompareReport r = compareImages(test, "t", ref, "r", lax, nullptr);
+      const FamilyStats& s = family(r, "bary").stats;
+      EXPECT_EQ(s.nanCount + s.infCount, 1u);
+      EXPECT_FALSE(r.pass) << "a " << bad << " in " << (inReference ? "reference" : "test") << " passed";
+    }
+  }
+}
+
+int incompatibility(const Framebuffer& test, const Framebuffer& ref, std::string* message) {
+  try {
+    compareImages(test, "test.exr", ref, "ref.exr", Thresholds{}, nullptr);
+  } catch (const Error& e) {
+    *message = e.what();
+    return int(e.code());
+  }
+  return 0;
+}
+
+TEST(Compare, IncompatibleImagesAreRefusedNamingFileAndChannel) {
+  std::string message;
+  Framebuffer small(kW, kH + 1);
+  EXPECT_EQ(incompatibility(image(), small, &message), int(ExitCode::kBadInput));
+  EXPECT_NE(message.find("differs"), std::string::npos) << message;
+
+  Framebuffer noUv(kW, kH);
+  noUv.addUint(channels::kTriangleId, 1);
+  for (const char* b : channels::kBary) noUv.addFloat(b);
+  noUv.addFloat(channels::kDepth);
+  EXPECT_EQ(incompatibility(image(), noUv, &message), int(ExitCode::kBadInput));
+  EXPECT_NE(message.find("ref.exr: channel attr.uv.x"), std::string::npos) << message;
+
+  Framebuffer floatIds(kW, kH);
+  floatIds.addFloat(channels::kTriangleId);
+  EXPECT_EQ(incompatibility(floatIds, image(), &message), int(ExitCode::kBadInput));
+  EXPECT_NE(message.find("test.exr: channel tri.id"), std::string::npos) << message;
+}
+
+TEST(Compare, HeatmapHasErrorAndClassChannels) {
+  Framebuffer test = image();
+  at(test, channels::kBary[0], 3, 4) = 0.3f;
+  idAt(test, 0, 0) = 7;
+  Framebuffer heatmap;
+  compareImages(test, "t", image(), "r", Thresholds{}, &heatmap);
+  ASSERT_NE(heatmap.find("error.bary"), nullptr);
+  ASSERT_NE(heatmap.find("error.attr.uv"), nullptr);
+  ASSERT_NE(heatmap.find("R"), nullptr);
+  EXPECT_NEAR(heatmap.find("error.bary")->floats[4 * kW + 3], 0.05, 1e-6);
+  EXPECT_EQ(heatmap.find("class.id")->uints[0], std::uint32_t(PixelClass::kDifferentTriangle));
+  EXPECT_EQ(heatmap.find("class.id")->uints[1], std::uint32_t(PixelClass::kSameTriangle));
+}
+
+TEST(Compare, JsonReportCarriesVerdictCountsAndFamilies) {
+  Framebuffer test = image();
+  at(test, channels::kBary[0], 3, 4) = std::numeric_limits<float>::quiet_NaN();
+  const nlohmann::json j =
+      reportToJson(compareImages(test, "t", image(), "r", Thresholds{}, nullptr));
+  EXPECT_EQ(j["verdict"], "fail");
+  EXPECT_EQ(j["pixels"]["same_triangle"], 100);
+  EXPECT_EQ(j["families"]["bary"]["nan"], 1);
+  for (const char* key : {"max", "mean", "rms", "p99", "p999"}) {
+    EXPECT_TRUE(j["families"]["depth"].contains(key)) << key;
+  }
+}
+
+TEST(Percentile, UsesNearestRank) {
+  std::vector<float> values;
+  for (int i = 1000; i >= 1; --i) values.push_back(float(i));
+  EXPECT_EQ(percentile(values, 0.999), 999.0);
+  EXPECT_EQ(percentile(values, 0.99), 990.0);
+  EXPECT_EQ(percentile(values, 0.5), 500.0);
+  EXPECT_EQ(percentile(values, 1.0), 1000.0);
+}
+
+}  // namespace
+}  // namespace rc

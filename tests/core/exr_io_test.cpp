@@ -1,0 +1,101 @@
+// EXR round trips are bit-exact and invalid files are refused with the right error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "core/error.h"
+#include "core/exr_io.h"
+
+namespace rc {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir() {
+  fs::path dir = fs::temp_directory_path() /
+                 ("rc_exr_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                  "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::create_directories(dir);
+  return dir;
+}
+
+Framebuffer specialValues() {
+  Framebuffer fb(7, 3);
+  std::uint32_t* ids = fb.addUint("tri.id");
+  float* values = fb.addFloat("bary.b0");
+  const float specials[] = {0.0f, -0.0f, 1.0f, std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(), -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN(), 1e-30f, 3.14159274f};
+  for (std::size_t i = 0; i < fb.pixelCount(); ++i) {
+    ids[i] = i == 0 ? 0xFFFFFFFFu : std::uint32_t(i * 2654435761u);
+    values[i] = specials[i % 9];
+  }
+  fb.attributes["rastercheck.scene"] = "special values";
+  return fb;
+}
+
+std::int32_t expectError(const std::string& path) {
+  try {
+    readExr(path);
+  } catch (const Error& e) {
+    return int(e.code());
+  }
+  return -1;
+}
+
+TEST(ExrIo, RoundTripIsBitExactForUintAndFloat) {
+  const fs::path path = tempDir() / "special.exr";
+  const Framebuffer original = specialValues();
+  writeExr(original, path.string());
+  const Framebuffer back = readExr(path.string());
+  ASSERT_EQ(back.width(), 7);
+  ASSERT_EQ(back.height(), 3);
+  const Channel* ids = back.find("tri.id");
+  const Channel* values = back.find("bary.b0");
+  ASSERT_TRUE(ids && values);
+  EXPECT_EQ(ids->type, ChannelType::kUint);
+  EXPECT_EQ(values->type, ChannelType::kFloat);
+  EXPECT_EQ(0, std::memcmp(ids->uints.data(), original.find("tri.id")->uints.data(), 21 * 4));
+  EXPECT_EQ(0, std::memcmp(values->floats.data(), original.find("bary.b0")->floats.data(), 21 * 4));
+  EXPECT_EQ(back.attributes.at("rastercheck.scene"), "special values");
+}
+
+TEST(ExrIo, TruncatedFileIsBadInput) {
+  const fs::path dir = tempDir();
+  writeExr(specialValues(), (dir / "whole.exr").string());
+  std::ifstream in(dir / "whole.exr", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  std::ofstream((dir / "cut.exr"), std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() * 2 / 3));
+  EXPECT_EQ(expectError((dir / "cut.exr").string()), int(ExitCode::kBadInput));
+}
+
+TEST(ExrIo, EmptyFileIsBadInputAndMissingFileIsIoError) {
+  const fs::path dir = tempDir();
+  std::ofstream(dir / "empty.exr").close();
+  EXPECT_EQ(expectError((dir / "empty.exr").string()), int(ExitCode::kBadInput));
+  EXPECT_EQ(expectError((dir / "absent.exr").string()), int(ExitCode::kIo));
+}
+
+TEST(ExrIo, NotAnExrIsBadInput) {
+  const fs::path dir = tempDir();
+  std::ofstream(dir / "text.exr") << "this is not an image";
+  EXPECT_EQ(expectError((dir / "text.exr").string()), int(ExitCode::kBadInput));
+}
+
+TEST(ExrIo, WriteIntoMissingFolderIsIoErrorAndLeavesNothing) {
+  const fs::path dir = tempDir() / "missing";
+  try {
+    writeExr(specialValues(), (dir / "x.exr").string());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kIo);
+  }
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+}  // namespace
+}  // namespace rc

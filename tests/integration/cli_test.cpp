@@ -1,0 +1,136 @@
+// The CLI as a user meets it: exit codes, messages, and files written or not written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run(const std::string& args) {
+  const char* exe = std::getenv("RASTERCHECK_EXE");
+  if (!exe) throw std::runtime_error("RASTERCHECK_EXE is not set; run through ctest");
+  const std::string command = std::string(exe) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+fs::path freshDir() {
+  const fs::path dir = fs::temp_directory_path() /
+                       (std::string("rc_cli_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(Cli, HelpAndScenesExitZero) {
+  EXPECT_EQ(run("--help").exitCode, 0);
+  EXPECT_EQ(run("check --help").exitCode, 0);
+  const CliRun scenes = run("scenes");
+  EXPECT_EQ(scenes.exitCode, 0);
+  for (const char* name : {"floor", "cube", "sphere", "blob"}) {
+    EXPECT_NE(scenes.output.find(name), std::string::npos) << name;
+  }
+}
+
+TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
+  const fs::path dir = freshDir();
+  const CliRun r = run("check floor cube --out " + (dir / "out").string() + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  for (const char* file : {"floor.raster.exr", "floor.reference.exr", "floor.heatmap.exr", "cube.heatmap.exr"}) {
+    EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
+  }
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+  EXPECT_EQ(j["verdict"], "pass");
+  EXPECT_EQ(j["scenes"].size(), 2u);
+}
+
+TEST(Cli, AffineCheckExitsOne) {
+  const CliRun r = run("check floor --mode affine");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("FAIL"), std::string::npos);
+}
+
+TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
+  const fs::path dir = freshDir();
+  const std::string exr = (dir / "floor.exr").string();
+  ASSERT_EQ(run("render floor --backend raster -o " + exr).exitCode, 0);
+  const CliRun r = run("compare " + exr + " " + exr + " --json " + (dir / "self.json").string() +
+                    " --heatmap " + (dir / "heat.exr").string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "self.json"));
+  EXPECT_EQ(j["families"]["bary"]["max"], 0.0);
+  EXPECT_EQ(j["families"]["depth"]["max"], 0.0);
+  EXPECT_EQ(j["pixels"]["different_triangle"], 0);
+  EXPECT_TRUE(fs::exists(dir / "heat.exr"));
+}
+
+TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {
+  const fs::path dir = freshDir();
+  const std::string exr = (dir / "cube.exr").string(), cut = (dir / "cut.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  const std::uintmax_t size = fs::file_size(exr);
+  fs::copy_file(exr, cut);
+  fs::resize_file(cut, size / 2);
+  const CliRun r = run("compare " + cut + " " + exr + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find(cut), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "r.json"));
+}
+
+TEST(Cli, MismatchedSizesAndMissingChannelsAreExitThree) {
+  const fs::path dir = freshDir();
+  const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(), c = (dir / "c.exr").string();
+  ASSERT_EQ(run("render cube -o " + a + " --size 64x48").exitCode, 0);
+  ASSERT_EQ(run("render cube -o " + b + " --size 64x64").exitCode, 0);
+  ASSERT_EQ(run("render sphere -o " + c + " --size 64x48").exitCode, 0);  // has attr.normal
+  const CliRun sizes = run("compare " + a + " " + b);
+  EXPECT_EQ(sizes.exitCode, 3) << sizes.output;
+  EXPECT_NE(sizes.output.find("differs"), std::string::npos) << sizes.output;
+  const CliRun channels = run("compare " + a + " " + c);
+  EXPECT_EQ(channels.exitCode, 3) << channels.output;
+  EXPECT_NE(channels.output.find("attr.normal"), std::string::npos) << channels.output;
+}
+
+TEST(Cli, MissingInputIsExitFour) {
+  const CliRun r = run("compare /nonexistent/a.exr /nonexistent/b.exr");
+  EXPECT_EQ(r.exitCode, 4) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/a.exr"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsAreExitTwo) {
+  for (const char* args : {"", "frobnicate", "check --no-such-flag", "check --max-bary nan",
+                           "check --max-bary -1", "check --threads -1", "check --mode sideways",
+                           "check no-such-scene", "check blob:tris=abc", "render floor",
+                           "check --size 0x10"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.exitCode, 2) << "rastercheck " << args << "\n" << r.output;
+  }
+}
+
+TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
+  const fs::path dir = freshDir();
+  const std::string exr = (dir / "cube.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  const std::uintmax_t size = fs::file_size(exr);
+  const CliRun r = run("compare " + exr + " " + exr + " --heatmap " + exr);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_EQ(fs::file_size(exr), size);
+}
+
+}  // namespace

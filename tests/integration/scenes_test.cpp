@@ -1,0 +1,63 @@
+// The gate over the built-in scenes: perspective passes, affine fails (the gate has teeth),
+// and the double-precision rasterizer reproduces the reference.
+#include <gtest/gtest.h>
+
+#include "app/check.h"
+#include "scenes/registry.h"
+
+namespace rc {
+namespace {
+
+app::RenderSettings settings(Interpolation mode, Precision precision = Precision::kFloat) {
+  app::RenderSettings s;
+  s.raster.interpolation = mode;
+  s.raster.precision = precision;
+  s.threads = 2;
+  app::finishRenderSettings(s);
+  return s;
+}
+
+std::string reasons(const CompareReport& r) {
+  std::string text;
+  for (const std::string& reason : r.reasons) text += "\n  " + reason;
+  return text;
+}
+
+class DefaultScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DefaultScene, PassesTheGateInPerspectiveMode) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  const app::CheckResult r = app::checkScene(scene, settings(Interpolation::kPerspective), Thresholds{}, false);
+  EXPECT_TRUE(r.report.pass) << GetParam() << reasons(r.report);
+  EXPECT_GT(r.report.classCounts[int(PixelClass::kSameTriangle)], 1000u);
+}
+
+TEST_P(DefaultScene, FailsTheGateInAffineMode) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  const app::CheckResult r = app::checkScene(scene, settings(Interpolation::kAffine), Thresholds{}, false);
+  EXPECT_FALSE(r.report.pass) << GetParam() << ": affine interpolation passed the gate";
+  ASSERT_FALSE(r.report.reasons.empty());
+  EXPECT_EQ(r.report.reasons[0].rfind("bary:", 0), 0u) << r.report.reasons[0];
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, DefaultScene, ::testing::ValuesIn(defaultSceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+TEST(Gate, AffineFloorErrorIsLargeNotMarginal) {
+  const app::CheckResult r =
+      app::checkScene(makeBuiltinScene("floor"), settings(Interpolation::kAffine), Thresholds{}, false);
+  EXPECT_GT(r.report.families[0].stats.max, 0.1);  // the bent checker of the seed notes
+}
+
+TEST(Gate, DoublePrecisionRasterizerReproducesTheReference) {
+  for (const char* name : {"floor", "cube", "sphere"}) {
+    const app::CheckResult r = app::checkScene(
+        makeBuiltinScene(name), settings(Interpolation::kPerspective, Precision::kDouble), Thresholds{}, false);
+    // Both write float: what remains is at most one rounding of the same double value.
+    EXPECT_LE(r.report.families[0].stats.max, 1.2e-7) << name;
+    EXPECT_LE(r.report.families[1].stats.max, 1.2e-7) << name;
+  }
+}
+
+}  // namespace
+}  // namespace rc

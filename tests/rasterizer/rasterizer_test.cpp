@@ -1,0 +1,146 @@
+// End-to-end rasterizer behaviour against an independent analytic answer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/channels.h"
+#include "rasterizer/rasterizer.h"
+#include "scenes/registry.h"
+#include "tests/analytic.h"
+#include "tests/test_scenes.h"
+
+namespace rc {
+namespace {
+
+struct Accuracy {
+  int covered = 0;
+  double baryError = 0.0, depthError = 0.0, uvError = 0.0;
+  bool allFinite = true;
+  bool idsValid = true;
+};
+
+// Measures every covered pixel of `fb` against the analytic hit of the pixel's triangle.
+Accuracy measure(const Scene& scene, const Framebuffer& fb) {
+  Accuracy a;
+  const auto& ids = fb.find(channels::kTriangleId)->uints;
+  const float* b[3] = {fb.find(channels::kBary[0])->floats.data(), fb.find(channels::kBary[1])->floats.data(),
+                       fb.find(channels::kBary[2])->floats.data()};
+  const float* depth = fb.find(channels::kDepth)->floats.data();
+  const float* u = fb.find(channels::attributeChannel("uv", 0))->floats.data();
+  for (int y = 0; y < fb.height(); ++y) {
+    for (int x = 0; x < fb.width(); ++x) {
+      const std::size_t i = std::size_t(y) * fb.width() + x;
+      if (ids[i] == channels::kNoTriangle) continue;
+      if (ids[i] >= scene.mesh.triangleCount()) {
+        a.idsValid = false;
+        continue;
+      }
+      ++a.covered;
+      const testing::Analytic truth = testing::analyticHit(scene, ids[i], x, y);
+      long double uTruth = 0;
+      const glm::uvec3 t = scene.mesh.triangles[ids[i]];
+      const std::uint32_t corner[3] = {t.x, t.y, t.z};
+      for (int k = 0; k < 3; ++k) {
+        a.allFinite = a.allFinite && std::isfinite(b[k][i]);
+        a.baryError = std::max(a.baryError, double(std::fabs(b[k][i] - truth.b[k])));
+        uTruth += truth.b[k] * scene.mesh.positions[corner[k]].x;
+      }
+      a.allFinite = a.allFinite && std::isfinite(depth[i]) && std::isfinite(u[i]);
+      a.depthError = std::max(a.depthError, double(std::fabs(depth[i] - truth.depth) / truth.depth));
+      a.uvError = std::max(a.uvError, double(std::fabs(u[i] - uTruth)));
+    }
+  }
+  return a;
+}
+
+RasterOptions options(Precision precision, int threads = 1) {
+  RasterOptions o;
+  o.precision = precision;
+  o.threads = threads;
+  return o;
+}
+
+TEST(Rasterizer, TiltedTriangleMatchesAnalyticBarycentricsInBothPrecisions) {
+  const Scene scene = testing::makeTriangleScene({{-1.2f, -0.9f, -2.0f}, {1.4f, -0.5f, 0.8f}, {0.1f, 1.1f, -0.4f}});
+  const Accuracy exact = measure(scene, rasterize(scene, options(Precision::kDouble)));
+  EXPECT_GT(exact.covered, 300);
+  EXPECT_LT(exact.baryError, 1e-7);  // float output rounding of values in [0, 1]
+  EXPECT_LT(exact.depthError, 1e-7);
+  const Accuracy single = measure(scene, rasterize(scene, options(Precision::kFloat)));
+  EXPECT_EQ(single.covered, exact.covered);  // coverage does not depend on precision
+  EXPECT_LT(single.baryError, 2e-6);
+  EXPECT_LT(single.depthError, 2e-6);
+}
+
+TEST(Rasterizer, NearPlaneCrossingTriangleKeepsSourceIdAndBarycentrics) {
+  // One vertex behind the eye (z = 3), two in front: the clipped polygon is rendered as
+  // sub-triangles whose barycentrics must still refer to the source triangle.
+  const Scene scene =
+      testing::makeTriangleScene({{-1.0f, -0.6f, 0.0f}, {1.0f, -0.6f, 0.0f}, {0.0f, -0.3f, 6.0f}});
+  for (Precision precision : {Precision::kDouble, Precision::kFloat}) {
+    const Framebuffer fb = rasterize(scene, options(precision));
+    const Accuracy a = measure(scene, fb);
+    EXPECT_GT(a.covered, 300) << precisionName(precision);
+    EXPECT_TRUE(a.idsValid);
+    EXPECT_TRUE(a.allFinite);
+    EXPECT_LT(a.baryError, precision == Precision::kDouble ? 1e-6 : 1e-4) << precisionName(precision);
+    EXPECT_LT(a.depthError, precision == Precision::kDouble ? 1e-6 : 1e-4) << precisionName(precision);
+    const float* depth = fb.find(channels::kDepth)->floats.data();
+    for (std::size_t i = 0; i < fb.pixelCount(); ++i) {
+      if (fb.find(channels::kTriangleId)->uints[i] != channels::kNoTriangle) {
+        ASSERT_GE(depth[i], float(scene.camera.zNear()) * (1 - 1e-5f)) << "drawn in front of near";
+      }
+    }
+  }
+}
+
+TEST(Rasterizer, TriangleBehindTheEyeDrawsNothing) {
+  const Scene scene = testing::makeTriangleScene({{-1.0f, -1.0f, 4.0f}, {1.0f, -1.0f, 4.0f}, {0.0f, 1.0f, 5.0f}});
+  const Framebuffer fb = rasterize(scene, options(Precision::kFloat));
+  const auto& ids = fb.find(channels::kTriangleId)->uints;
+  for (std::uint32_t id : ids) ASSERT_EQ(id, channels::kNoTriangle);
+}
+
+TEST(Rasterizer, OutputBitsAreIdenticalForOneAndTwoThreads) {
+  const Scene scene = makeBuiltinScene("blob:tris=20000");
+  const Framebuffer one = rasterize(scene, options(Precision::kFloat, 1));
+  const Framebuffer two = rasterize(scene, options(Precision::kFloat, 2));
+  const Framebuffer again = rasterize(scene, options(Precision::kFloat, 2));
+  ASSERT_EQ(one.channels().size(), two.channels().size());
+  for (std::size_t c = 0; c < one.channels().size(); ++c) {
+    const Channel& a = one.channels()[c];
+    for (const Framebuffer* other : {&two, &again}) {
+      const Channel& b = other->channels()[c];
+      ASSERT_EQ(a.name, b.name);
+      const void* pa = a.type == ChannelType::kUint ? (const void*)a.uints.data() : (const void*)a.floats.data();
+      const void* pb = b.type == ChannelType::kUint ? (const void*)b.uints.data() : (const void*)b.floats.data();
+      EXPECT_EQ(0, std::memcmp(pa, pb, one.pixelCount() * 4)) << a.name;
+    }
+  }
+}
+
+TEST(Rasterizer, WritesExactlyTheScenesAttributes) {
+  const Framebuffer fb = rasterize(makeBuiltinScene("cube"), options(Precision::kFloat));
+  EXPECT_NE(fb.find("attr.uv.x"), nullptr);
+  EXPECT_NE(fb.find("attr.uv.y"), nullptr);
+  for (const Channel& c : fb.channels()) {
+    EXPECT_TRUE(c.name.rfind("attr.", 0) != 0 || c.name.rfind("attr.uv.", 0) == 0) << c.name;
+  }
+  EXPECT_EQ(fb.attributes.at("rastercheck.mode"), "perspective");
+}
+
+TEST(Rasterizer, SubpixelBitsTooFineForTheImageAreRefused) {
+  const Scene scene = makeBuiltinScene("blob:tris=1000");  // 1920 x 1080
+  RasterOptions o;
+  o.subpixelBits = 16;  // guard band 2^(28-16) = 4096 pixels: a 1920-wide image fits
+  EXPECT_NO_THROW(rasterize(scene, o));
+  o.subpixelBits = 17;  // outside 1..16
+  EXPECT_ANY_THROW(rasterize(scene, o));
+  const Scene wide = testing::makeTriangleScene({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, 8192, 16);
+  o.subpixelBits = 16;  // 8192 pixels do not fit a 4096-pixel guard band
+  EXPECT_ANY_THROW(rasterize(wide, o));
+}
+
+}  // namespace
+}  // namespace rc

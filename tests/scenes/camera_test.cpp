@@ -1,0 +1,100 @@
+// The camera contract: rays and projection agree, row 0 is the top, depth is w, and
+// degenerate cameras are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "scenes/camera.h"
+
+namespace rc {
+namespace {
+
+CameraSpec obliqueSpec() {
+  CameraSpec spec;
+  spec.eye = {1.5, -2.0, 4.0};
+  spec.target = {0.2, 0.3, -0.7};
+  spec.up = {0.1, 1.0, 0.2};
+  spec.fovYDegrees = 37.0;
+  spec.zNear = 0.25;
+  spec.zFar = 100.0;
+  spec.width = 160;
+  spec.height = 90;
+  return spec;
+}
+
+TEST(Camera, RayThroughPixelProjectsBackToThePixelCentre) {
+  for (double zFar : {100.0, std::numeric_limits<double>::infinity()}) {
+    CameraSpec spec = obliqueSpec();
+    spec.zFar = zFar;
+    const Camera camera(spec);
+    const glm::dmat4 clipFromWorld = camera.clipFromWorld();
+    for (int y : {0, 17, 89}) {
+      for (int x : {0, 80, 159}) {
+        const CameraRay ray = camera.rayThroughPixel(x, y);
+        for (double t : {0.5, 3.0, 40.0}) {
+          const glm::dvec4 clip = clipFromWorld * glm::dvec4(ray.origin + t * ray.direction, 1.0);
+          EXPECT_NEAR(clip.w, t, 1e-12 * t) << "w must equal depth along forward";
+          EXPECT_NEAR(camera.rasterXFromNdc(clip.x / clip.w), x + 0.5, 1e-9);
+          EXPECT_NEAR(camera.rasterYFromNdc(clip.y / clip.w), y + 0.5, 1e-9);
+        }
+        EXPECT_NEAR(glm::dot(ray.direction, camera.forward()), 1.0, 1e-15);
+      }
+    }
+  }
+}
+
+TEST(Camera, RowZeroIsTheTopAndViewSpaceLooksDownMinusZ) {
+  CameraSpec spec;  // eye (0,0,5) looking at the origin, up +y
+  const Camera camera(spec);
+  const glm::dvec4 above = camera.clipFromWorld() * glm::dvec4(0.0, 1.0, 0.0, 1.0);
+  EXPECT_LT(camera.rasterYFromNdc(above.y / above.w), spec.height / 2.0);
+  const glm::dvec4 right = camera.clipFromWorld() * glm::dvec4(1.0, 0.0, 0.0, 1.0);
+  EXPECT_GT(camera.rasterXFromNdc(right.x / right.w), spec.width / 2.0);
+  const glm::dvec4 view = camera.viewFromWorld() * glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  EXPECT_NEAR(view.z, -5.0, 1e-12);
+}
+
+void expectRefused(CameraSpec spec, const char* what) {
+  try {
+    Camera camera(spec, "test");
+    ADD_FAILURE() << "accepted a camera with " << what;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kBadInput) << what;
+    EXPECT_NE(std::string(e.what()).find("test: camera"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Camera, DegenerateCamerasAreRefusedWithTheirReason) {
+  CameraSpec spec;
+  spec.fovYDegrees = 0.0;
+  expectRefused(spec, "a zero field of view");
+  spec = {};
+  spec.fovYDegrees = 180.0;
+  expectRefused(spec, "a 180-degree field of view");
+  spec = {};
+  spec.zNear = 0.0;
+  expectRefused(spec, "near = 0");
+  spec = {};
+  spec.zFar = spec.zNear;
+  expectRefused(spec, "near = far");
+  spec = {};
+  spec.target = spec.eye;
+  expectRefused(spec, "the eye at the target");
+  spec = {};
+  spec.up = {0.0, 0.0, 0.0};
+  expectRefused(spec, "a zero up vector");
+  spec = {};
+  spec.up = {0.0, 0.0, 1.0};
+  expectRefused(spec, "up parallel to the view direction");
+  spec = {};
+  spec.eye.x = std::numeric_limits<double>::quiet_NaN();
+  expectRefused(spec, "a NaN eye");
+  spec = {};
+  spec.width = 0;
+  expectRefused(spec, "zero width");
+}
+
+}  // namespace
+}  // namespace rc
