@@ -51,7 +51,7 @@ void SceneArgs::checkAllUsed() const {
 const std::vector<BuiltinScene>& builtinScenes() {
   static const std::vector<BuiltinScene> kScenes = {
       {"floor",
-       "large checkered floor at a grazing angle, crossing the near plane (the seed notes' case)",
+       "large checkered floor at a grazing angle (the seed notes' case: affine bends the checker)",
        "", true, builtin::makeFloor},
       {"cube", "cube with per-face UVs, three faces in perspective", "", true, builtin::makeCube},
       {"sphere", "UV sphere with normals and UVs", "segments=N (4..1024, default 32)", true,

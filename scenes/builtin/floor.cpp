@@ -1,24 +1,24 @@
-// "floor": the seed notes' case. Two triangles make a 200x200 floor with a checker UV
-// (8 units across, 64 checks in the preview), seen from 1 unit above it, looking 2.3 degrees
-// below the horizon. The floor reaches behind the eye, so both triangles cross the near
-// plane. Screen-space (affine) interpolation visibly bends the checker; the gate must fail it.
+// "floor": the seed notes' case. Two triangles make a 20x20 floor whose UV spans [0,1]^2 (an
+// 8x8 checkerboard in the preview), seen from 1 unit above it. It runs from 1 to 21 units in
+// front of the eye, so the far rows are seen at under 3 degrees and w varies 20x across each
+// triangle: screen-space (affine) interpolation visibly bends the checker and breaks it along
+// the diagonal, while perspective-correct interpolation keeps every line straight.
 #include "scenes/builtin/builtin.h"
 
 namespace rc::builtin {
 
 Scene makeFloor(SceneArgs&) {
   Mesh mesh;
-  mesh.positions = {{-100.f, 0.f, -100.f}, {100.f, 0.f, -100.f}, {100.f, 0.f, 100.f},
-                    {-100.f, 0.f, 100.f}};
+  mesh.positions = {{-10.f, 0.f, -21.f}, {10.f, 0.f, -21.f}, {10.f, 0.f, -1.f}, {-10.f, 0.f, -1.f}};
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
   Attribute& uv = mesh.addAttribute("uv", 2);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    uv.values[2 * i + 0] = (mesh.positions[i].x + 100.f) / 25.f;
-    uv.values[2 * i + 1] = (mesh.positions[i].z + 100.f) / 25.f;
+    uv.values[2 * i + 0] = (mesh.positions[i].x + 10.f) / 20.f;
+    uv.values[2 * i + 1] = (mesh.positions[i].z + 21.f) / 20.f;
   }
   CameraSpec camera;
   camera.eye = {0.0, 1.0, 0.0};
-  camera.target = {0.0, 0.6, -10.0};
+  camera.target = {0.0, 0.0, -9.0};
   camera.fovYDegrees = 60.0;
   camera.zNear = 0.05;
   camera.width = 800;
