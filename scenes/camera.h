@@ -21,6 +21,19 @@ struct CameraSpec {
   int height = 480;
 };
 
+// A spec looking from `eye` at `target` with +y up and an infinite far plane.
+inline CameraSpec lookAt(glm::dvec3 eye, glm::dvec3 target, double fovYDegrees, double zNear,
+                         int width = 640, int height = 480) {
+  CameraSpec spec;
+  spec.eye = eye;
+  spec.target = target;
+  spec.fovYDegrees = fovYDegrees;
+  spec.zNear = zNear;
+  spec.width = width;
+  spec.height = height;
+  return spec;
+}
+
 struct CameraRay {
   glm::dvec3 origin;     // the eye
   glm::dvec3 direction;  // not normalised: direction . forward == 1, so t is depth

@@ -18,13 +18,7 @@ Scene makeBlob(SceneArgs& args) {
                      float(-r * std::sin(theta) * std::sin(phi)));
   });
   addVertexNormals(mesh);
-  CameraSpec camera;
-  camera.eye = {0.0, 0.0, 3.4};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.fovYDegrees = 40.0;
-  camera.zNear = 0.1;
-  camera.width = 1920;
-  camera.height = 1080;
+  const CameraSpec camera = lookAt({0.0, 0.0, 3.4}, {0.0, 0.0, 0.0}, 40.0, 0.1, 1920, 1080);
   return Scene{"blob", "", std::move(mesh), Camera(camera, "scene blob")};
 }
 

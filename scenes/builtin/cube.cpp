@@ -27,11 +27,7 @@ Scene makeCube(SceneArgs&) {
     mesh.triangles.push_back({base, base + 2, base + 3});
   }
   mesh.attributes.push_back({"uv", 2, std::move(uvs)});
-  CameraSpec camera;
-  camera.eye = {2.6, 2.2, 3.4};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.fovYDegrees = 50.0;
-  camera.zNear = 0.1;
+  const CameraSpec camera = lookAt({2.6, 2.2, 3.4}, {0.0, 0.0, 0.0}, 50.0, 0.1);
   return Scene{"cube", "", std::move(mesh), Camera(camera, "scene cube")};
 }
 

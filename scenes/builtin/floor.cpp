@@ -16,13 +16,7 @@ Scene makeFloor(SceneArgs&) {
     uv.values[2 * i + 0] = (mesh.positions[i].x + 10.f) / 20.f;
     uv.values[2 * i + 1] = (mesh.positions[i].z + 21.f) / 20.f;
   }
-  CameraSpec camera;
-  camera.eye = {0.0, 1.0, 0.0};
-  camera.target = {0.0, 0.0, -9.0};
-  camera.fovYDegrees = 60.0;
-  camera.zNear = 0.05;
-  camera.width = 800;
-  camera.height = 600;
+  const CameraSpec camera = lookAt({0.0, 1.0, 0.0}, {0.0, 0.0, -9.0}, 60.0, 0.05, 800, 600);
   return Scene{"floor", "", std::move(mesh), Camera(camera, "scene floor")};
 }
 

@@ -14,11 +14,7 @@ Scene makeSphere(SceneArgs& args) {
                      float(-std::sin(theta) * std::sin(phi)));
   });
   addVertexNormals(mesh);
-  CameraSpec camera;
-  camera.eye = {0.0, 0.8, 2.8};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.fovYDegrees = 50.0;
-  camera.zNear = 0.1;
+  const CameraSpec camera = lookAt({0.0, 0.8, 2.8}, {0.0, 0.0, 0.0}, 50.0, 0.1);
   return Scene{"sphere", "", std::move(mesh), Camera(camera, "scene sphere")};
 }
 
