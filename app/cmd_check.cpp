@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "app/check.h"
 #include "app/commands.h"
@@ -24,18 +25,23 @@ struct CheckArgs {
   Thresholds thresholds;
 };
 
-// "blob:tris=1000" -> "blob_tris-1000": safe as a file name.
-std::string fileStem(const std::string& scene) {
+// Output file stem of a scene: a file's own stem ("../data/spot.obj" -> "spot"), a built-in
+// scene's spec made safe ("blob:tris=1000" -> "blob_tris-1000"); "-2", "-3"... on collisions.
+std::string fileStem(const std::string& scene, std::set<std::string>& used) {
+  const std::filesystem::path path(scene);
+  const std::string source = path.has_extension() ? path.stem().string() : scene;
   std::string stem;
-  for (char c : scene) {
+  for (char c : source) {
     const bool plain = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
     stem += plain ? c : (c == '=' ? '-' : '_');
   }
-  return stem;
+  std::string unique = stem;
+  for (int n = 2; !used.insert(unique).second; ++n) unique = stem + "-" + std::to_string(n);
+  return unique;
 }
 
-void writeOutputs(const std::string& dir, const std::string& scene, const CheckResult& r) {
-  const std::string base = (std::filesystem::path(dir) / fileStem(scene)).string();
+void writeOutputs(const std::string& dir, const std::string& stem, const CheckResult& r) {
+  const std::string base = (std::filesystem::path(dir) / stem).string();
   writeExr(r.raster, base + ".raster.exr");
   writeExr(r.reference, base + ".reference.exr");
   writeExr(r.heatmap, base + ".heatmap.exr");
@@ -60,6 +66,7 @@ int runCheck(CheckArgs& args) {
               "bary max", "bary p999", "depth max", "disagree", "raster ms", "ref ms");
   nlohmann::json rows = nlohmann::json::array();
   bool allPass = true;
+  std::set<std::string> stems;
   for (const Scene& scene : scenes) {
     const CheckResult r = checkScene(scene, args.settings, args.thresholds, !args.out.empty());
     const FamilyStats& bary = r.report.families[0].stats;
@@ -71,7 +78,7 @@ int runCheck(CheckArgs& args) {
                 formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs, r.referenceMs);
     for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
     if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
-    if (!args.out.empty()) writeOutputs(args.out, scene.name, r);
+    if (!args.out.empty()) writeOutputs(args.out, fileStem(scene.name, stems), r);
     allPass = allPass && r.report.pass;
     nlohmann::json row = {{"scene", scene.name},
                     {"triangles", r.triangles},
@@ -101,7 +108,7 @@ void registerCheck(CLI::App& root, Action& action) {
   CLI::App* command = root.add_subcommand(
       "check", "render scenes with both paths, compare them and gate (the CI accuracy gate)");
   command->add_option("scenes", args->scenes,
-                      "built-in scenes, NAME[:key=value,...]; default: the default set");
+                      "scenes: built-in NAME[:key=value,...], .obj, .gltf/.glb or .json scene file; default: the built-in default set");
   command->add_option("--out", args->out, "write raster, reference and heatmap EXRs to this folder");
   command->add_option("--json", args->json, "write a JSON report of every scene here");
   command->add_flag("-v,--verbose", args->verbose, "print the full comparison table per scene");

@@ -35,7 +35,7 @@ int runRender(RenderArgs& args) {
 void registerRender(CLI::App& root, Action& action) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* command = root.add_subcommand("render", "render one scene with one backend to an EXR file");
-  command->add_option("scene", args->scene, "built-in scene, NAME[:key=value,...]")->required();
+  command->add_option("scene", args->scene, "built-in NAME[:key=value,...], .obj, .gltf/.glb or .json scene file")->required();
   command->add_option("--backend", args->backend, "raster or reference")
       ->check(CLI::IsMember({"raster", "reference"}))
       ->capture_default_str();

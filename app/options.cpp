@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "scenes/registry.h"
+#include "scenes/scene_loader.h"
 
 namespace rc::app {
 namespace {
@@ -51,6 +51,11 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
       ->check(CLI::IsMember({"sse2", "sse4.2", "avx", "avx2", "avx512"}))
       ->capture_default_str();
   command->add_option("--size", s.size, "image size WxH, overriding the scene's (e.g. 1920x1080)");
+  command->add_option("--eye", s.eye, "camera position x,y,z, overriding the scene's");
+  command->add_option("--target", s.target, "point the camera looks at, x,y,z");
+  command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(1e-3, 179.999));
+  command->add_option("--attributes", s.attributes, "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
+      ->delimiter(',');
 }
 
 void addThresholdOptions(CLI::App* command, Thresholds& t) {
@@ -73,25 +78,43 @@ void finishRenderSettings(RenderSettings& s) {
   s.reference.threads = s.threads;
 }
 
+namespace {
+
+glm::dvec3 parseVec3(const std::string& text, const char* option) {
+  glm::dvec3 v;
+  const char* p = text.data();
+  const char* end = text.data() + text.size();
+  for (int i = 0; i < 3; ++i) {
+    auto [next, ec] = std::from_chars(p, end, v[i]);
+    const bool separatorOk = i < 2 ? (next < end && *next == ',') : next == end;
+    if (ec != std::errc() || !separatorOk || !std::isfinite(v[i])) {
+      throw usageError(std::string(option) + " must be three finite numbers x,y,z, got '" + text + "'");
+    }
+    p = next + 1;
+  }
+  return v;
+}
+
+}  // namespace
+
 Scene loadScene(const std::string& spec, const RenderSettings& settings) {
-  Scene scene = makeBuiltinScene(spec);
+  SceneOverrides o;
   if (!settings.size.empty()) {
-    int w = 0, h = 0;
     const std::string& text = settings.size;
     const std::size_t x = text.find('x');
     const bool ok = x != std::string::npos &&
-                    std::from_chars(text.data(), text.data() + x, w).ptr == text.data() + x &&
-                    std::from_chars(text.data() + x + 1, text.data() + text.size(), h).ptr ==
+                    std::from_chars(text.data(), text.data() + x, o.width).ptr == text.data() + x &&
+                    std::from_chars(text.data() + x + 1, text.data() + text.size(), o.height).ptr ==
                         text.data() + text.size();
-    if (!ok || w < 1 || h < 1 || w > 16384 || h > 16384) {
+    if (!ok || o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
       throw usageError("--size must be WxH with 1..16384 per side, got '" + text + "'");
     }
-    CameraSpec camera = scene.camera.spec();
-    camera.width = w;
-    camera.height = h;
-    scene.camera = Camera(camera, "--size");
   }
-  return scene;
+  if (!settings.eye.empty()) o.eye = parseVec3(settings.eye, "--eye");
+  if (!settings.target.empty()) o.target = parseVec3(settings.target, "--target");
+  if (settings.fovYDegrees > 0) o.fovYDegrees = settings.fovYDegrees;
+  if (!settings.attributes.empty()) o.attributes = settings.attributes;
+  return rc::loadScene(spec, o);
 }
 
 void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs) {

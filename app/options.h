@@ -17,7 +17,10 @@ struct RenderSettings {
   RasterOptions raster;
   ReferenceOptions reference;
   int threads = 0;
-  std::string size;  // "WxH" override of the scene's image size, or empty
+  std::string size;        // "WxH" override of the scene's image size, or empty
+  std::string eye, target;  // "x,y,z" camera overrides, or empty
+  double fovYDegrees = 0;  // vertical field of view override; 0 keeps the scene's
+  std::vector<std::string> attributes;  // narrows the attributes written; empty keeps all
 };
 
 void addRenderOptions(CLI::App* command, RenderSettings& settings);
@@ -26,7 +29,8 @@ void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
 // Propagates the thread count and checks the combination; throws usageError.
 void finishRenderSettings(RenderSettings& settings);
 
-// A built-in scene by NAME[:key=value,...], with the image size override applied.
+// A built-in scene (NAME[:key=value,...]), an OBJ or glTF file or a scene file, with the
+// command line's camera, size and attribute overrides applied.
 Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
 // Throws usageError when `output` names the same file as one of `inputs`.

@@ -1,6 +1,7 @@
 // Mesh helpers and validation.
 #include "scenes/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -34,6 +35,53 @@ const Attribute* Mesh::findAttribute(const std::string& name) const {
 Attribute& Mesh::addAttribute(const std::string& name, int components) {
   attributes.push_back({name, components, std::vector<float>(positions.size() * components)});
   return attributes.back();
+}
+
+void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart) {
+  const bool first = into.positions.empty() && into.triangles.empty();
+  const auto base = static_cast<unsigned>(into.positions.size());
+  if (first) {
+    into.attributes.clear();
+    for (const Attribute& a : part.attributes) into.attributes.push_back({a.name, a.components, {}});
+  } else {
+    std::erase_if(into.attributes, [&](const Attribute& a) {
+      const Attribute* other = part.findAttribute(a.name);
+      return !other || other->components != a.components;
+    });
+  }
+  for (const glm::vec3& p : part.positions) {
+    into.positions.push_back(glm::vec3(worldFromPart * glm::dvec4(glm::dvec3(p), 1.0)));
+  }
+  for (const glm::uvec3& t : part.triangles) into.triangles.push_back(t + glm::uvec3(base));
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(worldFromPart)));
+  for (Attribute& a : into.attributes) {
+    const Attribute& source = *part.findAttribute(a.name);
+    if (a.name == "normal" && a.components == 3) {
+      for (std::size_t i = 0; i < part.positions.size(); ++i) {
+        glm::dvec3 n = normalMatrix * glm::dvec3(source.values[3 * i], source.values[3 * i + 1],
+                                                 source.values[3 * i + 2]);
+        const double length = glm::length(n);
+        if (length > 0.0) n /= length;
+        for (int k = 0; k < 3; ++k) a.values.push_back(float(n[k]));
+      }
+    } else {
+      a.values.insert(a.values.end(), source.values.begin(), source.values.end());
+    }
+  }
+}
+
+void selectAttributes(Mesh& mesh, const std::vector<std::string>& names, const std::string& where) {
+  for (const std::string& name : names) {
+    if (!mesh.findAttribute(name)) {
+      std::string available;
+      for (const Attribute& a : mesh.attributes) available += (available.empty() ? "" : ", ") + a.name;
+      throw usageError(where + ": --attributes names '" + name + "', which the scene does not carry (it has: " +
+                       (available.empty() ? "none" : available) + ")");
+    }
+  }
+  std::erase_if(mesh.attributes, [&](const Attribute& a) {
+    return std::find(names.begin(), names.end(), a.name) == names.end();
+  });
 }
 
 void validateMesh(const Mesh& mesh, const std::string& where) {

@@ -27,6 +27,17 @@ struct Mesh {
   Attribute& addAttribute(const std::string& name, int components);  // sized for the vertices
 };
 
+// Appends `part` to `into`, its positions mapped by `worldFromPart` (in double, rounded once)
+// and an attribute named "normal" with 3 components by its inverse transpose (renormalised).
+// Only attributes carried by both (same name and component count) survive: a merged mesh never
+// has channels some of its triangles cannot fill. `into` may start empty (then it takes all of
+// part's attributes).
+void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart);
+
+// Keeps only the named attributes; throws usageError naming an unknown one and listing those
+// the mesh has.
+void selectAttributes(Mesh& mesh, const std::vector<std::string>& names, const std::string& where);
+
 // Throws badInput(where + ...) naming the first problem: a non-finite or out-of-range
 // position, an index out of range, an attribute of the wrong size or with a bad name.
 void validateMesh(const Mesh& mesh, const std::string& where);

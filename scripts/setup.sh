@@ -9,7 +9,9 @@ packages=(
   libopenexr-dev                 # EXR input and output (OpenEXR 3)
   libglm-dev                     # vector math
   libcli11-dev                   # the command line
-  nlohmann-json3-dev             # JSON reports
+  nlohmann-json3-dev             # JSON reports and scene files
+  libtinyobjloader-dev           # OBJ meshes
+  libtinygltf-dev                # glTF 2.0 scenes
   libgtest-dev                   # the test suite
 )
 

@@ -1,0 +1,197 @@
+// glTF loading: tinygltf parses (confined by gltf_checks), this file walks the node hierarchy,
+// gathers triangle primitives in world space, and reads the first camera.
+#include "scenes/loaders/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <limits>
+#include <set>
+
+#include "core/error.h"
+#include "scenes/loaders/gltf_checks.h"
+#include "scenes/loaders/read_file.h"
+
+namespace rc {
+namespace {
+
+constexpr int kMaxNodeDepth = 256;
+
+glm::dmat4 localMatrix(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::dmat4 m;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[std::size_t(c * 4 + r)];  // column-major
+    }
+    return m;
+  }
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3) {
+    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  }
+  if (node.rotation.size() == 4) {  // glTF stores x, y, z, w; GLM's constructor takes w first
+    m *= glm::mat4_cast(glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])));
+  }
+  if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  return m;
+}
+
+bool finiteMatrix(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[c][r])) return false;
+    }
+  }
+  return true;
+}
+
+struct Walker {
+  const tinygltf::Model& model;
+  const std::string& path;
+  GltfContent content;
+  std::set<int> onPath;  // nodes on the current root-to-node path: a repeat is a cycle
+
+  Mesh readPrimitive(const tinygltf::Primitive& primitive, const std::string& where) const {
+    const auto& attrs = primitive.attributes;
+    auto position = attrs.find("POSITION");
+    if (position == attrs.end()) throw badInput(where, "primitive without POSITION");
+    Mesh part;
+    const std::vector<float> p = gltf::readFloats(model, position->second, 3, false, path);
+    for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
+    const struct { const char* gltf; const char* name; int components[2]; bool normalized; } kAttributes[] = {
+        {"NORMAL", "normal", {3, 3}, false}, {"TEXCOORD_0", "uv", {2, 2}, true}, {"COLOR_0", "color", {3, 4}, true}};
+    for (const auto& spec : kAttributes) {
+      auto it = attrs.find(spec.gltf);
+      if (it == attrs.end()) continue;
+      const int n = (it->second >= 0 && std::size_t(it->second) < model.accessors.size())
+                        ? tinygltf::GetNumComponentsInType(model.accessors[it->second].type)
+                        : spec.components[0];
+      const int components = (n == spec.components[1]) ? n : spec.components[0];
+      std::vector<float> values = gltf::readFloats(model, it->second, components, spec.normalized, path);
+      if (values.size() != part.positions.size() * components) {
+        throw badInput(where, std::string(spec.gltf) + " count differs from POSITION count");
+      }
+      part.attributes.push_back({spec.name, components, std::move(values)});
+    }
+    std::vector<unsigned> order;
+    if (primitive.indices >= 0) {
+      order = gltf::readIndices(model, primitive.indices, part.positions.size(), path);
+    } else {
+      for (unsigned i = 0; i < part.positions.size(); ++i) order.push_back(i);
+    }
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    for (std::size_t i = 0; i + 2 < order.size();) {
+      if (mode == TINYGLTF_MODE_TRIANGLES) {
+        part.triangles.push_back({order[i], order[i + 1], order[i + 2]});
+        i += 3;
+      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // every other triangle flips order
+        part.triangles.push_back(i % 2 ? glm::uvec3(order[i + 1], order[i], order[i + 2])
+                                       : glm::uvec3(order[i], order[i + 1], order[i + 2]));
+        ++i;
+      } else {  // fan
+        part.triangles.push_back({order[0], order[i + 1], order[i + 2]});
+        ++i;
+      }
+    }
+    return part;
+  }
+
+  void readCamera(int index, const glm::dmat4& world, const std::string& where) {
+    if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
+    const tinygltf::Camera& camera = model.cameras[index];
+    const std::string at = path + ": cameras[" + std::to_string(index) + "]";
+    if (camera.type != "perspective") {
+      throw badInput(at, "is " + camera.type + "; only perspective cameras are supported "
+                         "(give --eye and --target to view the scene in perspective)");
+    }
+    const tinygltf::PerspectiveCamera& p = camera.perspective;
+    CameraSpec spec;
+    spec.eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
+    spec.target = spec.eye + glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
+    spec.up = glm::normalize(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)));
+    spec.fovYDegrees = p.yfov * 180.0 / M_PI;
+    spec.zNear = p.znear;
+    spec.zFar = p.zfar > 0.0 ? p.zfar : std::numeric_limits<double>::infinity();  // 0: infinite
+    spec.height = 600;
+    spec.width = p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)
+                     ? int(std::clamp(std::lround(600.0 * p.aspectRatio), 1L, 16384L))
+                     : 800;
+    Camera(spec, at);  // validates now, naming the camera
+    content.camera = spec;
+  }
+
+  void visit(int index, const glm::dmat4& parent, int depth) {
+    const std::string where = path + ": nodes[" + std::to_string(index) + "]";
+    if (index < 0 || std::size_t(index) >= model.nodes.size()) throw badInput(where, "no such node");
+    if (depth > kMaxNodeDepth) throw badInput(where, "node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
+    if (!onPath.insert(index).second) throw badInput(where, "the node hierarchy has a cycle");
+    const tinygltf::Node& node = model.nodes[index];
+    const glm::dmat4 world = parent * localMatrix(node);
+    if (!finiteMatrix(world)) throw badInput(where, "transform is not finite");
+    if (node.camera >= 0 && !content.camera) readCamera(node.camera, world, where);
+    if (node.mesh >= 0) {
+      if (std::size_t(node.mesh) >= model.meshes.size()) throw badInput(where, "mesh index out of range");
+      const double det = glm::determinant(glm::dmat3(world));
+      if (!(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
+      const auto& primitives = model.meshes[node.mesh].primitives;
+      for (std::size_t i = 0; i < primitives.size(); ++i) {
+        const int mode = primitives[i].mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitives[i].mode;
+        if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;  // points, lines
+        const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
+        appendMesh(content.mesh, readPrimitive(primitives[i], at), world);
+      }
+    }
+    for (int child : node.children) visit(child, world, depth + 1);
+    onPath.erase(index);
+  }
+};
+
+}  // namespace
+
+GltfContent loadGltf(const std::string& path) {
+  const std::string bytes = readInputFile(path);
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  const std::string json = binary ? gltf::glbJsonChunk(bytes, path) : bytes;
+  gltf::checkUris(json, path);
+
+  std::error_code ec;
+  const std::string folder = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).parent_path().string();
+  tinygltf::TinyGLTF loader;
+  gltf::confineLoader(loader, &folder);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                       unsigned(bytes.size()), folder)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), folder);
+  if (!ok) {
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    throw badInput(path, "not a valid glTF 2.0 file: " + err);
+  }
+  if (model.asset.version.rfind("2.", 0) != 0) throw badInput(path + ": /asset/version", "'" + model.asset.version + "' is not 2.x");
+
+  Walker walker{model, path, {}, {}};
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (std::size_t(scene) >= model.scenes.size()) throw badInput(path + ": /scene", "no such scene");
+    roots = model.scenes[scene].nodes;
+  } else {  // no scenes: every node that is nobody's child
+    std::vector<bool> child(model.nodes.size(), false);
+    for (const auto& node : model.nodes) {
+      for (int c : node.children) {
+        if (c >= 0 && std::size_t(c) < child.size()) child[c] = true;
+      }
+    }
+    for (std::size_t i = 0; i < child.size(); ++i) {
+      if (!child[i]) roots.push_back(int(i));
+    }
+  }
+  for (int root : roots) walker.visit(root, glm::dmat4(1.0), 0);
+  if (walker.content.mesh.triangles.empty()) throw badInput(path, "no triangle primitives in the scene");
+  validateMesh(walker.content.mesh, path);
+  return std::move(walker.content);
+}
+
+}  // namespace rc

@@ -1,0 +1,142 @@
+// OBJ loading: tinyobjloader parses, this file validates, splits face-varying corners and
+// triangulates.
+#include "scenes/loaders/obj_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <unordered_map>
+
+#include "core/error.h"
+#include "scenes/loaders/read_file.h"
+
+namespace rc {
+namespace {
+
+// Line numbers of the face statements ("f ..."), to name the place of a bad face.
+std::vector<std::size_t> faceLines(const std::string& text) {
+  std::vector<std::size_t> lines;
+  std::size_t line = 1;
+  bool atLineStart = true;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (atLineStart) {
+      std::size_t j = i;
+      while (j < text.size() && (text[j] == ' ' || text[j] == '\t')) ++j;
+      if (j + 1 < text.size() && text[j] == 'f' && (text[j + 1] == ' ' || text[j + 1] == '\t')) {
+        lines.push_back(line);
+      }
+      atLineStart = false;
+    }
+    if (c == '\n') {
+      ++line;
+      atLineStart = true;
+    }
+  }
+  return lines;
+}
+
+struct CornerKey {
+  int v, vt, vn;
+  bool operator==(const CornerKey&) const = default;
+};
+struct CornerHash {
+  std::size_t operator()(const CornerKey& k) const {
+    return std::hash<long long>()((static_cast<long long>(k.v) * 1000003LL + k.vt) * 1000003LL + k.vn);
+  }
+};
+
+}  // namespace
+
+Mesh loadObj(const std::string& path) {
+  const std::string text = readInputFile(path);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // fan-triangulated below, so every face keeps its line
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(text, "", config)) {
+    throw badInput(path, "not a valid OBJ file: " + reader.Error());
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const std::vector<std::size_t> lines = faceLines(text);
+
+  std::size_t faceCount = 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) faceCount += shape.mesh.num_face_vertices.size();
+  const bool linesKnown = lines.size() == faceCount;
+  std::size_t face = 0;
+  const auto where = [&](std::size_t f) {
+    return linesKnown ? path + ":" + std::to_string(lines[f]) : path + ": face " + std::to_string(f + 1);
+  };
+
+  const int vertexCount = int(attrib.vertices.size() / 3);
+  const int uvCount = int(attrib.texcoords.size() / 2);
+  const int normalCount = int(attrib.normals.size() / 3);
+  // An attribute is kept when every corner of every face has it; a file where only some
+  // faces have it is refused, naming the first face without it.
+  bool anyUv = false, anyNormal = false;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::index_t& index : shape.mesh.indices) {
+      anyUv = anyUv || index.texcoord_index >= 0;
+      anyNormal = anyNormal || index.normal_index >= 0;
+    }
+  }
+  {
+    std::size_t f = 0;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+      std::size_t offset = 0;
+      for (const unsigned char arity : shape.mesh.num_face_vertices) {
+        for (unsigned k = 0; k < arity; ++k) {
+          const tinyobj::index_t& index = shape.mesh.indices[offset + k];
+          if ((anyUv && index.texcoord_index < 0) || (anyNormal && index.normal_index < 0)) {
+            throw badInput(where(f), std::string("this face lacks the ") +
+                                         (anyUv && index.texcoord_index < 0 ? "texture coordinate (vt)" : "normal (vn)") +
+                                         " index that other faces have");
+          }
+        }
+        offset += arity;
+        ++f;
+      }
+    }
+  }
+  const bool allUv = anyUv, allNormal = anyNormal;
+
+  Mesh mesh;
+  std::vector<float> uvs, normals;
+  std::unordered_map<CornerKey, unsigned, CornerHash> corners;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    std::size_t offset = 0;
+    for (const unsigned char arity : shape.mesh.num_face_vertices) {
+      if (arity < 3) throw badInput(where(face), "face has " + std::to_string(arity) + " vertices; 3 or more needed");
+      std::vector<unsigned> polygon;
+      for (unsigned k = 0; k < arity; ++k) {
+        const tinyobj::index_t& index = shape.mesh.indices[offset + k];
+        if (index.vertex_index < 0 || index.vertex_index >= vertexCount) {
+          throw badInput(where(face), "vertex index out of range (the file has " + std::to_string(vertexCount) +
+                                          " vertices; indices start at 1, negative ones count back)");
+        }
+        if ((allUv && index.texcoord_index >= uvCount) || (allNormal && index.normal_index >= normalCount)) {
+          throw badInput(where(face), "texture coordinate or normal index out of range");
+        }
+        const CornerKey key{index.vertex_index, allUv ? index.texcoord_index : -1,
+                            allNormal ? index.normal_index : -1};
+        auto [it, inserted] = corners.try_emplace(key, unsigned(mesh.positions.size()));
+        if (inserted) {
+          const float* p = &attrib.vertices[3 * std::size_t(key.v)];
+          mesh.positions.push_back({p[0], p[1], p[2]});
+          if (allUv) uvs.insert(uvs.end(), &attrib.texcoords[2 * std::size_t(key.vt)], &attrib.texcoords[2 * std::size_t(key.vt) + 2]);
+          if (allNormal) normals.insert(normals.end(), &attrib.normals[3 * std::size_t(key.vn)], &attrib.normals[3 * std::size_t(key.vn) + 3]);
+        }
+        polygon.push_back(it->second);
+      }
+      for (unsigned k = 1; k + 1 < arity; ++k) mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+      offset += arity;
+      ++face;
+    }
+  }
+  if (mesh.triangles.empty()) throw badInput(path, "no faces");
+  if (allUv) mesh.attributes.push_back({"uv", 2, std::move(uvs)});
+  if (allNormal) mesh.attributes.push_back({"normal", 3, std::move(normals)});
+  validateMesh(mesh, path);
+  return mesh;
+}
+
+}  // namespace rc

@@ -1,0 +1,25 @@
+// One entry point for every way a scene is named: a built-in scene (NAME[:key=value,...]), an
+// OBJ or glTF file, or a scene file (.json), plus the command line's overrides.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace rc {
+
+struct SceneOverrides {
+  int width = 0, height = 0;              // image size; 0 keeps the scene's
+  std::optional<glm::dvec3> eye, target;  // camera position and aim
+  std::optional<double> fovYDegrees;
+  std::optional<std::vector<std::string>> attributes;  // narrow the attributes written
+};
+
+// Files are recognised by their extension (.obj, .gltf, .glb, .json, any case); anything else
+// is a built-in scene name. A bare mesh (OBJ, or glTF without a camera) gets a camera framing
+// its bounding box (scenes/loaders/framing.h). Throws usageError / badInput / ioError.
+Scene loadScene(const std::string& spec, const SceneOverrides& overrides = {});
+
+}  // namespace rc
