@@ -170,6 +170,11 @@ GltfContent loadGltf(const std::string& path) {
     throw badInput(path, "not a valid glTF 2.0 file: " + err);
   }
   if (model.asset.version.rfind("2.", 0) != 0) throw badInput(path + ": /asset/version", "'" + model.asset.version + "' is not 2.x");
+  if (!model.extensionsRequired.empty()) {
+    std::string names;
+    for (const std::string& e : model.extensionsRequired) names += (names.empty() ? "" : ", ") + e;
+    throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + names);
+  }
 
   Walker walker{model, path, {}, {}};
   std::vector<int> roots;

@@ -4,6 +4,9 @@
 
 #include <tiny_obj_loader.h>
 
+#include <charconv>
+#include <cmath>
+#include <string_view>
 #include <unordered_map>
 
 #include "core/error.h"
@@ -35,6 +38,41 @@ std::vector<std::size_t> faceLines(const std::string& text) {
   return lines;
 }
 
+// tinyobjloader reads a token it cannot parse ("nan", "abc") as 0 without a word, so every
+// number of a v, vt or vn statement is checked here first: it must parse completely, with
+// std::from_chars (the locale never matters), and be finite as a float.
+void checkNumbers(const std::string& text, const std::string& path) {
+  std::size_t line = 1, start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view statement(text.data() + start, end - start);
+    std::size_t i = statement.find_first_not_of(" \t");
+    if (i != std::string_view::npos && statement[i] == 'v' && i + 1 < statement.size() &&
+        (statement[i + 1] == ' ' || statement[i + 1] == '\t' ||
+         ((statement[i + 1] == 't' || statement[i + 1] == 'n') && i + 2 < statement.size() &&
+          (statement[i + 2] == ' ' || statement[i + 2] == '\t')))) {
+      i = statement.find_first_of(" \t", i);
+      while (true) {
+        i = statement.find_first_not_of(" \t\r", i);
+        if (i == std::string_view::npos) break;
+        std::size_t j = statement.find_first_of(" \t\r", i);
+        if (j == std::string_view::npos) j = statement.size();
+        const std::string_view token = statement.substr(i, j - i);
+        float value = 0.0f;
+        const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value)) {
+          throw badInput(path + ":" + std::to_string(line),
+                         "'" + std::string(token.substr(0, 40)) + "' is not a finite float");
+        }
+        i = j;
+      }
+    }
+    start = end + 1;
+    ++line;
+  }
+}
+
 struct CornerKey {
   int v, vt, vn;
   bool operator==(const CornerKey&) const = default;
@@ -49,6 +87,7 @@ struct CornerHash {
 
 Mesh loadObj(const std::string& path) {
   const std::string text = readInputFile(path);
+  checkNumbers(text, path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // fan-triangulated below, so every face keeps its line
   config.vertex_color = false;

@@ -123,6 +123,26 @@ TEST(Cli, UsageErrorsAreExitTwo) {
   }
 }
 
+TEST(Cli, MeshFilesTakeCameraOverridesAndAttributeSelection) {
+  const fs::path dir = freshDir();
+  std::ofstream(dir / "tri.obj") << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+  const std::string obj = (dir / "tri.obj").string();
+  const CliRun ok = run("check " + obj + " --eye 0,0,4 --target 0,0,0 --fov 40 --size 64x48 --out " + (dir / "out").string());
+  EXPECT_EQ(ok.exitCode, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "tri.raster.exr"));
+  const CliRun missingAttribute = run("check " + obj + " --attributes normal");
+  EXPECT_EQ(missingAttribute.exitCode, 2) << missingAttribute.output;
+  EXPECT_NE(missingAttribute.output.find("normal"), std::string::npos);
+  EXPECT_EQ(run("check " + obj + " --eye 0,0").exitCode, 2);
+  const CliRun absent = run("check " + (dir / "absent.obj").string());
+  EXPECT_EQ(absent.exitCode, 4) << absent.output;
+  std::ofstream(dir / "bad.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  const CliRun bad = run("check " + (dir / "bad.obj").string() + " --out " + (dir / "badout").string());
+  EXPECT_EQ(bad.exitCode, 3) << bad.output;
+  EXPECT_NE(bad.output.find("bad.obj:4"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "badout" / "bad.raster.exr"));
+}
+
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   const fs::path dir = freshDir();
   const std::string exr = (dir / "cube.exr").string();
