@@ -1,5 +1,5 @@
 // `rastercheck check [SCENE...]`: both paths, compare, one row per scene; exit 0 only if every
-// scene passes the gate.
+// scene passes the gate. --out writes EXRs and PNGs, --report an HTML report, --json a report.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -7,20 +7,26 @@
 
 #include "app/check.h"
 #include "app/commands.h"
+#include "app/html_report.h"
+#include "app/progress.h"
+#include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/parallel.h"
 #include "core/exr_io.h"
+#include "core/parallel.h"
+#include "core/png_io.h"
 #include "scenes/registry.h"
 
 namespace rc::app {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct CheckArgs {
   std::vector<std::string> scenes;
-  std::string out, json;
-  bool verbose = false;
+  std::string out, report, json;
+  bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
 };
@@ -28,7 +34,7 @@ struct CheckArgs {
 // Output file stem of a scene: a file's own stem ("../data/spot.obj" -> "spot"), a built-in
 // scene's spec made safe ("blob:tris=1000" -> "blob_tris-1000"); "-2", "-3"... on collisions.
 std::string fileStem(const std::string& scene, std::set<std::string>& used) {
-  const std::filesystem::path path(scene);
+  const fs::path path(scene);
   const std::string source = path.has_extension() ? path.stem().string() : scene;
   std::string stem;
   for (char c : source) {
@@ -40,62 +46,97 @@ std::string fileStem(const std::string& scene, std::set<std::string>& used) {
   return unique;
 }
 
-void writeOutputs(const std::string& dir, const std::string& stem, const CheckResult& r) {
-  const std::string base = (std::filesystem::path(dir) / stem).string();
+void makeFolder(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
+}
+
+void writePngs(const std::string& dir, const std::string& stem, const CheckResult& r) {
+  const std::string base = (fs::path(dir) / stem).string();
+  writePng(displayImage(r.raster), base + ".raster.png");
+  writePng(displayImage(r.reference), base + ".reference.png");
+  writePng(heatmapImage(r.heatmap), base + ".heatmap.png");
+}
+
+void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r) {
+  const std::string base = (fs::path(dir) / stem).string();
   writeExr(r.raster, base + ".raster.exr");
   writeExr(r.reference, base + ".reference.exr");
   writeExr(r.heatmap, base + ".heatmap.exr");
+}
+
+std::string settingsLine(const RenderSettings& s) {
+  return std::string("rasterizer: ") + interpolationName(s.raster.interpolation) + ", " +
+         precisionName(s.raster.precision) + ", " + std::to_string(s.raster.subpixelBits) +
+         " subpixel bits; reference: Embree " + s.reference.isa + "; " +
+         std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck 0.1.0";
 }
 
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
   if (args.scenes.empty()) args.scenes = defaultSceneNames();
-  if (!args.out.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(args.out, ec);
-    if (!std::filesystem::is_directory(args.out)) {
-      throw ioError(args.out, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
-    }
-  }
-  // Load every scene first, so a bad name fails before any work is done.
-  std::vector<Scene> scenes;
-  for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
+  if (!args.out.empty()) makeFolder(args.out);
+  if (!args.report.empty()) makeFolder(args.report);
+  const bool wantHeatmap = !args.out.empty() || !args.report.empty();
+  const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
+  Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
 
-  std::printf("%-22s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", "scene", "triangles", "size", "verdict",
-              "bary max", "bary p999", "depth max", "disagree", "raster ms", "ref ms");
+  // Load every scene first, so a bad name or file fails before any work is done.
+  std::vector<Scene> scenes;
+  for (const std::string& spec : args.scenes) {
+    progress.step("loading " + spec);
+    scenes.push_back(loadScene(spec, args.settings));
+  }
+
+  std::printf("%-22s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", "scene", "triangles", "size", "verdict", "bary max",
+              "bary p999", "depth max", "disagree", "raster ms", "ref ms");
   nlohmann::json rows = nlohmann::json::array();
-  bool allPass = true;
+  std::vector<ReportScene> reportScenes;
   std::set<std::string> stems;
+  bool allPass = true;
   for (const Scene& scene : scenes) {
-    const CheckResult r = checkScene(scene, args.settings, args.thresholds, !args.out.empty());
+    progress.step(scene.name + ": rasterizer, reference, compare");
+    const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantHeatmap);
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
     const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);
-    std::printf("%-22s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", scene.name.c_str(), r.triangles,
-                size.c_str(), r.report.pass ? "PASS" : "FAIL", formatNumber(bary.max).c_str(),
-                formatNumber(bary.p999).c_str(), formatNumber(depth.max).c_str(),
-                formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs, r.referenceMs);
+    std::printf("%-22s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", scene.name.c_str(), r.triangles, size.c_str(),
+                r.report.pass ? "PASS" : "FAIL", formatNumber(bary.max).c_str(), formatNumber(bary.p999).c_str(),
+                formatNumber(depth.max).c_str(), formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs,
+                r.referenceMs);
     for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
     if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
-    if (!args.out.empty()) writeOutputs(args.out, fileStem(scene.name, stems), r);
+    std::fflush(stdout);
+    const std::string stem = fileStem(scene.name, stems);
+    if (!args.out.empty()) {
+      progress.step(scene.name + ": writing EXR and PNG files");
+      writeExrs(args.out, stem, r);
+      writePngs(args.out, stem, r);
+    }
+    if (!args.report.empty()) {
+      progress.step(scene.name + ": writing report images");
+      writePngs(args.report, stem, r);
+    }
     allPass = allPass && r.report.pass;
+    reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report});
     nlohmann::json row = {{"scene", scene.name},
-                    {"triangles", r.triangles},
-                    {"mode", interpolationName(args.settings.raster.interpolation)},
-                    {"precision", precisionName(args.settings.raster.precision)},
-                    {"subpixel_bits", args.settings.raster.subpixelBits},
-                    {"threads", resolveThreadCount(args.settings.threads)},
-                    {"raster_ms", r.rasterMs},
-                    {"reference_ms", r.referenceMs},
-                    {"report", reportToJson(r.report)}};
+                          {"triangles", r.triangles},
+                          {"mode", interpolationName(args.settings.raster.interpolation)},
+                          {"precision", precisionName(args.settings.raster.precision)},
+                          {"subpixel_bits", args.settings.raster.subpixelBits},
+                          {"threads", resolveThreadCount(args.settings.threads)},
+                          {"raster_ms", r.rasterMs},
+                          {"reference_ms", r.referenceMs},
+                          {"report", reportToJson(r.report)}};
     rows.push_back(row);
   }
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
+  if (!args.report.empty()) writeHtmlReport(args.report, reportScenes, settingsLine(args.settings));
   if (!args.json.empty()) {
-    nlohmann::json j = {{"format_version", kReportFormatVersion},
-                        {"verdict", allPass ? "pass" : "fail"},
-                        {"scenes", rows}};
+    const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
+                              {"settings", settingsLine(args.settings)}, {"scenes", rows}};
     writeTextFile(args.json, j.dump(2) + "\n");
   }
   return allPass ? 0 : 1;
@@ -109,9 +150,11 @@ void registerCheck(CLI::App& root, Action& action) {
       "check", "render scenes with both paths, compare them and gate (the CI accuracy gate)");
   command->add_option("scenes", args->scenes,
                       "scenes: built-in NAME[:key=value,...], .obj, .gltf/.glb or .json scene file; default: the built-in default set");
-  command->add_option("--out", args->out, "write raster, reference and heatmap EXRs to this folder");
+  command->add_option("--out", args->out, "write raster, reference and heatmap EXRs and PNGs to this folder");
+  command->add_option("--report", args->report, "write a self-contained HTML report (index.html and images) to this folder");
   command->add_option("--json", args->json, "write a JSON report of every scene here");
   command->add_flag("-v,--verbose", args->verbose, "print the full comparison table per scene");
+  command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   addThresholdOptions(command, args->thresholds);
   command->callback([args, &action] { action = [args] { return runCheck(*args); }; });

@@ -4,30 +4,34 @@
 
 #include "app/commands.h"
 #include "app/options.h"
+#include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
 #include "core/exr_io.h"
+#include "core/png_io.h"
 
 namespace rc::app {
 namespace {
 
 struct CompareArgs {
-  std::string test, reference, heatmap, json;
+  std::string test, reference, heatmap, heatmapPng, json;
   Thresholds thresholds;
 };
 
 int runCompare(const CompareArgs& args) {
-  for (const std::string* out : {&args.heatmap, &args.json}) {
+  for (const std::string* out : {&args.heatmap, &args.heatmapPng, &args.json}) {
     if (!out->empty()) checkNotAnInput(*out, {args.test, args.reference});
   }
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
   const CompareReport report = compareImages(test, args.test, reference, args.reference,
-                                             args.thresholds, args.heatmap.empty() ? nullptr : &heatmap);
+                                             args.thresholds,
+                                             args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
   if (!args.heatmap.empty()) writeExr(heatmap, args.heatmap);
+  if (!args.heatmapPng.empty()) writePng(heatmapImage(heatmap), args.heatmapPng);
   if (!args.json.empty()) writeTextFile(args.json, reportToJson(report).dump(2) + "\n");
   return report.pass ? 0 : 1;
 }
@@ -41,6 +45,7 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("test", args->test, "test image (e.g. the rasterizer's EXR)")->required();
   command->add_option("reference", args->reference, "reference image")->required();
   command->add_option("--heatmap", args->heatmap, "write an error heatmap EXR here");
+  command->add_option("--heatmap-png", args->heatmapPng, "write the heatmap as a PNG with a legend here");
   command->add_option("--json", args->json, "write the JSON report here");
   addThresholdOptions(command, args->thresholds);
   command->callback([args, &action] { action = [args] { return runCompare(*args); }; });

@@ -34,6 +34,15 @@ inline Rgb heatColour(double error) {
   return magma((std::log10(error) - kHeatLogMin) / (kHeatLogMax - kHeatLogMin));
 }
 
+// The stops above are sRGB-encoded (display) values; EXR holds linear light.
+inline Rgb linearFromSrgb(const Rgb& c) {
+  Rgb out;
+  for (int k = 0; k < 3; ++k) {
+    out[k] = c[k] <= 0.04045f ? c[k] / 12.92f : float(std::pow((c[k] + 0.055) / 1.055, 2.4));
+  }
+  return out;
+}
+
 inline constexpr Rgb kColourBackground{0.15f, 0.15f, 0.15f};     // both empty: grey
 inline constexpr Rgb kColourDifferentTriangle{0.0f, 1.0f, 0.0f};  // green
 inline constexpr Rgb kColourOneSideOnly{0.0f, 0.9f, 1.0f};        // cyan

@@ -220,6 +220,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                    : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
                    : classes[i] != PixelClass::kSameTriangle      ? kColourOneSideOnly
                                                                   : heatColour(baryError[i]);
+      colour = linearFromSrgb(colour);
       for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
     }
     heatmap->attributes["rastercheck.heatmap"] =

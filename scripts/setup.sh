@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages rastercheck builds and tests with. As root it installs what
-# is missing; otherwise it names the missing packages and exits 1.
+# Installs the Debian 12 packages rastercheck builds with (and, with --test, what the test
+# suite also uses: Chromium for the HTML report test). As root it installs what is missing;
+# otherwise it names the missing packages and exits 1.
 set -euo pipefail
 
 packages=(
@@ -12,8 +13,14 @@ packages=(
   nlohmann-json3-dev             # JSON reports and scene files
   libtinyobjloader-dev           # OBJ meshes
   libtinygltf-dev                # glTF 2.0 scenes
+  libpng-dev                     # PNG images for people
+  libfreetype-dev fonts-dejavu-core  # legend text in PNG heatmaps
   libgtest-dev                   # the test suite
 )
+
+if [[ "${1:-}" == "--test" ]]; then
+  packages+=(chromium)           # opens the HTML report headless in the tests
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "compare/compare.h"
+#include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/channels.h"
 #include "core/error.h"
@@ -154,6 +155,28 @@ TEST(Compare, HeatmapHasErrorAndClassChannels) {
   EXPECT_NEAR(heatmap.find("error.bary")->floats[4 * kW + 3], 0.05, 1e-6);
   EXPECT_EQ(heatmap.find("class.id")->uints[0], std::uint32_t(PixelClass::kDifferentTriangle));
   EXPECT_EQ(heatmap.find("class.id")->uints[1], std::uint32_t(PixelClass::kSameTriangle));
+}
+
+TEST(HeatmapPicture, KeepsTheMapAndAddsALegendWithTheReservedColours) {
+  Framebuffer test = image();
+  idAt(test, 0, 0) = 7;  // a different-triangle pixel: green
+  Framebuffer heatmap;
+  compareImages(test, "t", image(), "r", Thresholds{}, &heatmap);
+  const Rgb8Image picture = heatmapImage(heatmap);
+  EXPECT_GE(picture.width, 760);  // wide enough for the legend
+  EXPECT_GT(picture.height, kH + 60);
+  const std::uint8_t* p = &picture.pixels[0];
+  EXPECT_EQ(p[0], 0);
+  EXPECT_EQ(p[1], 255);  // the different-triangle pixel at (0, 0) is pure green
+  EXPECT_EQ(p[2], 0);
+  std::size_t greenInLegend = 0;
+  for (int y = kH; y < picture.height; ++y) {
+    for (int x = 0; x < picture.width; ++x) {
+      const std::uint8_t* q = &picture.pixels[(std::size_t(y) * picture.width + x) * 3];
+      greenInLegend += q[0] == 0 && q[1] == 255 && q[2] == 0;
+    }
+  }
+  EXPECT_GT(greenInLegend, 100u) << "the legend's swatch for different-triangle pixels";
 }
 
 TEST(Compare, JsonReportCarriesVerdictCountsAndFamilies) {

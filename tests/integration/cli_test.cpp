@@ -143,6 +143,25 @@ TEST(Cli, MeshFilesTakeCameraOverridesAndAttributeSelection) {
   EXPECT_FALSE(fs::exists(dir / "badout" / "bad.raster.exr"));
 }
 
+TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
+  const CliRun plain = run("check cube sphere");  // stderr is a pipe here
+  EXPECT_NE(plain.output.find("rastercheck: [1/4] loading cube"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("rastercheck: [4/4] sphere"), std::string::npos) << plain.output;
+  const CliRun quiet = run("check cube sphere --quiet");
+  EXPECT_EQ(quiet.output.find("rastercheck: ["), std::string::npos) << quiet.output;
+  EXPECT_EQ(quiet.exitCode, 0);
+  // On a terminal (a pseudo-terminal from util-linux's script): a bar redrawn in place.
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "util-linux script is absent: no terminal test";
+  const std::string command = "script -qec '" + std::string(std::getenv("RASTERCHECK_EXE")) + " check cube sphere' /dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string tty;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) tty.append(buffer.data(), n);
+  pclose(pipe);
+  EXPECT_NE(tty.find("\r\033[K["), std::string::npos) << "no bar redrawn in place";
+  EXPECT_EQ(tty.find("rastercheck: [1/4]"), std::string::npos) << "plain lines on a terminal";
+}
+
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   const fs::path dir = freshDir();
   const std::string exr = (dir / "cube.exr").string();

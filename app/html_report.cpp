@@ -1,0 +1,129 @@
+// HTML report: a summary line, then per scene its verdict and reasons, three images and its
+// statistics. Inline CSS only.
+#include "app/html_report.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include "compare/report.h"
+#include "core/atomic_file.h"
+
+namespace rc::app {
+namespace {
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Image file names are stems we made (alphanumerics, '-', '_', '.'); still, percent-encode
+// anything else so a name can never break out of the attribute.
+std::string urlEncode(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.') {
+      out += char(c);
+    } else {
+      char buf[4];
+      std::snprintf(buf, sizeof buf, "%%%02X", c);
+      out += buf;
+    }
+  }
+  return out;
+}
+
+const char* kStyle = R"(
+body { font-family: sans-serif; margin: 24px; background: #fafafa; color: #222; }
+h1 { margin-bottom: 4px; }
+.summary { font-size: 1.2em; margin: 8px 0 20px; }
+.pass { color: #fff; background: #2e7d32; padding: 2px 8px; border-radius: 4px; }
+.fail { color: #fff; background: #c62828; padding: 2px 8px; border-radius: 4px; }
+.scene { background: #fff; border: 1px solid #ddd; border-radius: 6px; padding: 12px 16px; margin-bottom: 20px; }
+.images { display: flex; gap: 12px; flex-wrap: wrap; }
+figure { margin: 0; }
+figure img { max-width: 420px; border: 1px solid #ccc; display: block; }
+figcaption { font-size: 0.85em; color: #555; }
+table { border-collapse: collapse; margin-top: 10px; font-size: 0.9em; }
+th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: right; }
+th:first-child, td:first-child { text-align: left; }
+.settings { color: #555; }
+)";
+
+void sceneSection(std::ostringstream& html, const ReportScene& s) {
+  const CompareReport& r = s.report;
+  html << "<section class=\"scene\">\n<h2>" << escape(s.name) << " <span class=\"" << (r.pass ? "pass" : "fail")
+       << "\">" << (r.pass ? "PASS" : "FAIL") << "</span></h2>\n";
+  html << "<p>" << s.triangles << " triangles, " << r.width << "x" << r.height << "; raster "
+       << formatNumber(s.rasterMs) << " ms, reference " << formatNumber(s.referenceMs) << " ms.</p>\n";
+  if (r.pass) {
+    html << "<p>Every family is within its threshold and no NaN or Inf was seen.</p>\n";
+  } else {
+    html << "<ul>\n";
+    for (const std::string& reason : r.reasons) html << "<li>" << escape(reason) << "</li>\n";
+    html << "</ul>\n";
+  }
+  html << "<div class=\"images\">\n";
+  const std::pair<const char*, const char*> images[] = {
+      {"raster", "rasterizer (preview)"}, {"reference", "reference (preview)"}, {"heatmap", "error heatmap"}};
+  for (const auto& [kind, caption] : images) {
+    const std::string file = urlEncode(s.stem + "." + kind + ".png");
+    html << "<figure><a href=\"" << file << "\"><img src=\"" << file << "\" alt=\"" << caption << " of "
+         << escape(s.name) << "\"></a><figcaption>" << caption << "</figcaption></figure>\n";
+  }
+  html << "</div>\n<table>\n<tr><th>pixels</th><th>same triangle</th><th>different triangle</th>"
+       << "<th>test only</th><th>reference only</th><th>disagreement</th><th>one side only</th></tr>\n<tr><td>"
+       << r.coveredEither << " covered</td><td>" << r.classCounts[int(PixelClass::kSameTriangle)] << "</td><td>"
+       << r.classCounts[int(PixelClass::kDifferentTriangle)] << "</td><td>" << r.classCounts[int(PixelClass::kTestOnly)]
+       << "</td><td>" << r.classCounts[int(PixelClass::kReferenceOnly)] << "</td><td>"
+       << formatNumber(r.disagreementFraction) << " (limit " << formatNumber(r.thresholds.disagreement) << ")</td><td>"
+       << formatNumber(r.coverageFraction) << " (limit " << formatNumber(r.thresholds.coverage) << ")</td></tr>\n</table>\n";
+  html << "<table>\n<tr><th>family</th><th>max</th><th>mean</th><th>rms</th><th>p50</th><th>p99</th><th>p99.9</th>"
+       << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>worst pixel: test / reference</th></tr>\n";
+  for (const FamilyReport& f : r.families) {
+    const FamilyStats& st = f.stats;
+    std::string worst = "-";
+    if (st.worst.x >= 0) {
+      worst = "(" + std::to_string(st.worst.x) + ", " + std::to_string(st.worst.y) + ") " +
+              formatNumber(st.worst.test) + " / " + formatNumber(st.worst.reference);
+    }
+    html << "<tr><td>" << escape(f.name) << "</td><td>" << formatNumber(st.max) << "</td><td>" << formatNumber(st.mean)
+         << "</td><td>" << formatNumber(st.rms) << "</td><td>" << formatNumber(st.p50) << "</td><td>"
+         << formatNumber(st.p99) << "</td><td>" << formatNumber(st.p999) << "</td><td>" << st.nanCount + st.infCount
+         << "</td><td>" << formatNumber(f.gated) << (f.range > 0 ? " of range" : "") << "</td><td>"
+         << formatNumber(f.threshold) << "</td><td>" << escape(worst) << "</td></tr>\n";
+  }
+  html << "</table>\n</section>\n";
+}
+
+}  // namespace
+
+void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings) {
+  std::size_t failed = 0;
+  for (const ReportScene& s : scenes) failed += s.report.pass ? 0 : 1;
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+       << "<title>rastercheck report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n"
+       << "<h1>rastercheck report</h1>\n<p class=\"summary\"><span class=\"" << (failed ? "fail" : "pass") << "\">"
+       << (failed ? "FAIL" : "PASS") << "</span> "
+       << (failed ? std::to_string(failed) + " of " + std::to_string(scenes.size()) + " scenes fail the gate"
+                  : "all " + std::to_string(scenes.size()) + " scenes pass the gate")
+       << "</p>\n<p class=\"settings\">" << escape(settings) << "</p>\n"
+       << "<p class=\"settings\">Heatmaps: barycentric error on a log10 magma scale from 1e-8 (dark) to 1e-1 "
+       << "(bright); green: different triangle; cyan: covered by one side only; magenta: NaN or Inf; grey: "
+       << "empty. Thresholds and their origin: docs/compare.md.</p>\n";
+  for (const ReportScene& s : scenes) sceneSection(html, s);
+  html << "</body>\n</html>\n";
+  writeTextFile((std::filesystem::path(dir) / "index.html").string(), html.str());
+}
+
+}  // namespace rc::app

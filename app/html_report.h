@@ -1,0 +1,23 @@
+// The self-contained HTML report of `check --report DIR`: index.html with its PNG images
+// beside it, no script and nothing fetched from a network.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "compare/compare.h"
+
+namespace rc::app {
+
+struct ReportScene {
+  std::string name;       // as given on the command line
+  std::string stem;       // file stem of its images: STEM.raster.png, .reference.png, .heatmap.png
+  std::size_t triangles = 0;
+  double rasterMs = 0.0, referenceMs = 0.0;
+  CompareReport report;
+};
+
+// Writes DIR/index.html (atomically). `settings` is one line describing the run.
+void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings);
+
+}  // namespace rc::app

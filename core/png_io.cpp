@@ -1,0 +1,88 @@
+// PNG output with libpng; errors surface through setjmp as rc::Error after cleanup.
+#include "core/png_io.h"
+
+#include <png.h>
+
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace rc {
+
+Rgb8Image::Rgb8Image(int w, int h, Rgb8 fill) : width(w), height(h), pixels(std::size_t(w) * h * 3) {
+  for (std::size_t i = 0; i < pixels.size(); i += 3) {
+    pixels[i] = fill[0];
+    pixels[i + 1] = fill[1];
+    pixels[i + 2] = fill[2];
+  }
+}
+
+void Rgb8Image::set(int x, int y, Rgb8 c) {
+  if (x < 0 || y < 0 || x >= width || y >= height) return;
+  std::uint8_t* p = &pixels[(std::size_t(y) * width + x) * 3];
+  p[0] = c[0];
+  p[1] = c[1];
+  p[2] = c[2];
+}
+
+void Rgb8Image::paste(const Rgb8Image& other, int x0, int y0) {
+  for (int y = 0; y < other.height; ++y) {
+    for (int x = 0; x < other.width; ++x) {
+      const std::uint8_t* p = &other.pixels[(std::size_t(y) * other.width + x) * 3];
+      set(x0 + x, y0 + y, {p[0], p[1], p[2]});
+    }
+  }
+}
+
+namespace {
+
+std::uint8_t encodeSrgb(float linear) {
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  if (linear >= 1.0f) return 255;
+  const double v = linear <= 0.0031308f ? 12.92 * linear : 1.055 * std::pow(double(linear), 1.0 / 2.4) - 0.055;
+  return std::uint8_t(std::lround(v * 255.0));
+}
+
+}  // namespace
+
+Rgb8Image displayImage(const Framebuffer& fb) {
+  const Channel* c[3] = {fb.find("R"), fb.find("G"), fb.find("B")};
+  for (const Channel* channel : c) {
+    if (!channel || channel->type != ChannelType::kFloat) throw internalError("displayImage: no R, G, B channels");
+  }
+  Rgb8Image image(fb.width(), fb.height(), {0, 0, 0});
+  for (std::size_t i = 0; i < fb.pixelCount(); ++i) {
+    for (int k = 0; k < 3; ++k) image.pixels[3 * i + k] = encodeSrgb(c[k]->floats[i]);
+  }
+  return image;
+}
+
+void writePng(const Rgb8Image& image, const std::string& path) {
+  AtomicOutput out(path);
+  FILE* file = std::fopen(out.tempPath().c_str(), "wb");
+  if (!file) throw ioError(path, "cannot write PNG");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  volatile bool ok = png && info;  // volatile: survives libpng's longjmp
+  if (ok && setjmp(png_jmpbuf(png)) == 0) {
+    png_init_io(png, file);
+    png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < image.height; ++y) {
+      png_write_row(png, &image.pixels[std::size_t(y) * image.width * 3]);
+    }
+    png_write_end(png, nullptr);
+  } else {
+    ok = false;
+  }
+  png_destroy_write_struct(&png, &info);
+  const bool closed = std::fclose(file) == 0;
+  if (!ok || !closed) throw ioError(path, "cannot write PNG (disk full?)");
+  out.commit();
+}
+
+}  // namespace rc

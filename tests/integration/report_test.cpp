@@ -1,0 +1,106 @@
+// The HTML report as a person meets it: self-contained, and in headless Chromium it loads with
+// no console errors and shows its images.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "tests/test_files.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::pair<int, std::string> shell(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string chromium() {
+  for (const char* path : {"/usr/bin/chromium", "/usr/bin/chromium-browser"}) {
+    if (fs::exists(path)) return path;
+  }
+  return "";
+}
+
+// Opens `url` headless, saves a screenshot, returns Chromium's console lines.
+std::string openInChromium(const std::string& url, const std::string& screenshot, const std::string& profile) {
+  const auto [code, output] = shell(
+      "timeout 120 " + chromium() +
+      " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking"
+      " --disable-component-update --disable-sync --user-data-dir=" + profile +
+      " --enable-logging=stderr --v=0 --window-size=1400,1600 --screenshot=" + screenshot + " " + url);
+  EXPECT_EQ(code, 0) << output;
+  std::string console;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find(":CONSOLE") != std::string::npos) console += line + "\n";
+  }
+  return console;
+}
+
+std::string makeReport(const rc::testing::TempDir& dir) {
+  const std::string out = dir.file("report");
+  const auto [code, output] = shell(std::string(std::getenv("RASTERCHECK_EXE")) + " check floor cube -q --report " + out);
+  EXPECT_EQ(code, 0) << output;
+  return out;
+}
+
+TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
+  rc::testing::TempDir dir;
+  const std::string out = makeReport(dir);
+  std::ifstream in(fs::path(out) / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), {});
+  ASSERT_FALSE(html.empty());
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_NE(html.find("all 2 scenes pass the gate"), std::string::npos);
+  const std::regex source("src=\"([^\"]+)\"");
+  int images = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), source); it != std::sregex_iterator(); ++it) {
+    EXPECT_TRUE(fs::exists(fs::path(out) / (*it)[1].str())) << (*it)[1].str();
+    ++images;
+  }
+  EXPECT_EQ(images, 6);  // raster, reference and heatmap per scene
+}
+
+TEST(HtmlReport, LoadsInChromiumWithoutConsoleErrorsAndShowsItsImages) {
+  if (chromium().empty()) GTEST_SKIP() << "Chromium is absent (Debian package chromium): the report was not opened in a browser";
+  rc::testing::TempDir dir;
+  const std::string out = makeReport(dir);
+  const std::string shot = dir.file("report.png");
+  const std::string console = openInChromium("file://" + fs::absolute(out).string() + "/index.html", shot, dir.file("profile"));
+  EXPECT_EQ(console, "") << "console messages while loading the report";
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE(png_image_begin_read_from_file(&image, shot.c_str())) << "no screenshot";
+  image.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(image));
+  ASSERT_TRUE(png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr));
+  // The page background is near white; the floor's sky and the heatmaps are near black. A page
+  // whose images failed to load has almost no dark pixels.
+  std::size_t dark = 0;
+  for (std::size_t i = 0; i < pixels.size(); i += 3) dark += pixels[i] < 40 && pixels[i + 1] < 40 && pixels[i + 2] < 40;
+  EXPECT_GT(double(dark) / double(pixels.size() / 3), 0.05) << "the screenshot shows no images";
+}
+
+TEST(HtmlReport, ConsoleErrorDetectionCatchesADeliberateError) {
+  if (chromium().empty()) GTEST_SKIP() << "Chromium is absent (Debian package chromium)";
+  rc::testing::TempDir dir;
+  const std::string page = dir.write("bad.html", "<html><body><script>undefinedFunction();</script></body></html>");
+  const std::string console = openInChromium("file://" + page, dir.file("bad.png"), dir.file("profile"));
+  EXPECT_NE(console.find("undefinedFunction"), std::string::npos) << "the check above could not fail";
+}
+
+}  // namespace
