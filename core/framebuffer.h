@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -33,13 +34,14 @@ class Framebuffer {
   std::size_t pixelCount() const { return std::size_t(width_) * std::size_t(height_); }
 
   // Adds a channel filled with `fill` and returns its plane. Throws if the name exists.
-  // The plane pointer stays valid while channels are added (only the vector of channels moves).
+  // Channels live in a deque: pointers to a Channel and to its plane stay valid while further
+  // channels are added (ASan caught a vector reallocating under a held Channel pointer).
   float* addFloat(const std::string& name, float fill = 0.0f);
   std::uint32_t* addUint(const std::string& name, std::uint32_t fill = 0);
 
   const Channel* find(const std::string& name) const;
   Channel* find(const std::string& name);
-  const std::vector<Channel>& channels() const { return channels_; }
+  const std::deque<Channel>& channels() const { return channels_; }
 
   // Header attributes written as OpenEXR string attributes (provenance: renderer, mode, ...).
   std::map<std::string, std::string> attributes;
@@ -47,7 +49,7 @@ class Framebuffer {
  private:
   int width_ = 0;
   int height_ = 0;
-  std::vector<Channel> channels_;
+  std::deque<Channel> channels_;
 };
 
 }  // namespace rc
