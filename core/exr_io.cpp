@@ -93,6 +93,21 @@ Framebuffer readExr(const std::string& path) {
       throw badInput(path + ": dataWindow", "absurd size " + std::to_string(width) + "x" +
                                                 std::to_string(height));
     }
+    // Before allocating anything: the declared pixel data must fit the memory budget and be
+    // plausible for the file's size (a 30-byte file must not make us allocate gigabytes).
+    int channelCount = 0;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) ++channelCount;
+    const unsigned long long raw = static_cast<unsigned long long>(width) * height * 4ull * channelCount;
+    if (raw > kMaxImageBytes) {
+      throw badInput(path + ": dataWindow", std::to_string(width) + "x" + std::to_string(height) + " with " +
+                                                std::to_string(channelCount) + " channels exceeds the 4 GiB image limit");
+    }
+    std::error_code sizeError;
+    const unsigned long long fileSize = std::filesystem::file_size(path, sizeError);
+    if (!sizeError && fileSize * kMaxCompressionRatio < raw) {
+      throw badInput(path + ": dataWindow", "declares " + std::to_string(raw) + " bytes of pixels in a file of " +
+                                                std::to_string(fileSize) + " bytes: truncated or corrupt");
+    }
     Framebuffer fb(static_cast<int>(width), static_cast<int>(height));
     Imf::FrameBuffer slices;
     const std::size_t xStride = 4, yStride = 4 * std::size_t(width);

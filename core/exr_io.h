@@ -11,6 +11,11 @@ namespace rc {
 // The largest image either function accepts, per side (also set as OpenEXR's own limit, so a
 // huge declared data window in a tiny file is refused before anything is allocated).
 inline constexpr int kMaxImageSide = 16384;
+// The most pixel data one image may hold in memory (all channels): 4 GiB.
+inline constexpr unsigned long long kMaxImageBytes = 1ull << 32;
+// No lossless EXR codec compresses better than about 1032:1 (deflate's limit); a file smaller
+// than its declared raw data divided by this is truncated or lies about its size.
+inline constexpr unsigned long long kMaxCompressionRatio = 2048;
 
 // Writes every channel losslessly (ZIP) and every attribute as a string attribute, through a
 // temporary file renamed into place. Throws ioError on failure; nothing partial is left.

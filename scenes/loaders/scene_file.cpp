@@ -30,7 +30,8 @@ struct Reader {
 
   void onlyKeys(const Json& object, const std::string& pointer, std::initializer_list<const char*> keys) const {
     if (!object.is_object()) fail(pointer, "must be an object");
-    for (const auto& [key, value] : object.items()) {
+    for (const auto& item : object.items()) {
+      const std::string& key = item.key();
       if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) == keys.end()) {
         fail(pointer + "/" + key, "unknown key");
       }
