@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages rastercheck builds with (and, with --test, what the test
-# suite also uses: Chromium for the HTML report test). As root it installs what is missing;
+# suite also uses: Chromium for the HTML report test, clang for fuzzing). As root it installs what is missing;
 # otherwise it names the missing packages and exits 1.
 set -euo pipefail
 
@@ -20,6 +20,7 @@ packages=(
 
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(chromium)           # opens the HTML report headless in the tests
+  packages+=(clang libclang-rt-14-dev)  # libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
 fi
 
 missing=()

@@ -1,8 +1,21 @@
 #!/usr/bin/env bash
-# Set up, build, and run the whole test suite through ctest.
+# Set up, build, and run the whole test suite through ctest; then fuzz every input parser for a
+# bounded time (scripts/fuzz.sh) and run the whole suite again under ASan + UBSan.
+#   scripts/test.sh           everything (what CI runs)
+#   scripts/test.sh --quick   the Release suite only
 set -euo pipefail
 cd "$(dirname "$0")/.."
+jobs=$(nproc)
 scripts/setup.sh --test
 scripts/build.sh
-cd "${RASTERCHECK_BUILD_DIR:-build}"
-ctest --output-on-failure -j "$(nproc)"
+(cd "${RASTERCHECK_BUILD_DIR:-build}" && ctest --output-on-failure -j "$jobs")
+[[ "${1:-}" == "--quick" ]] && exit 0
+
+echo "== fuzzing every input parser (${FUZZ_SECONDS:-30}s each)"
+scripts/fuzz.sh
+
+echo "== the whole suite under AddressSanitizer + UndefinedBehaviorSanitizer"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRASTERCHECK_SANITIZE=ON > /dev/null
+cmake --build build-asan -j "$jobs"
+cd build-asan
+ctest --output-on-failure -j "$jobs"
