@@ -56,6 +56,10 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
   command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(1e-3, 179.999));
   command->add_option("--attributes", s.attributes, "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
       ->delimiter(',');
+  command->add_option("--max-triangles", s.maxTriangles, "refuse scenes with more triangles than this")
+      ->check(CLI::Range(1LL, 4'000'000'000LL))->capture_default_str();
+  command->add_option("--max-image-side", s.maxImageSide, "refuse images wider or taller than this")
+      ->check(CLI::Range(1, 16384))->capture_default_str();
 }
 
 void addThresholdOptions(CLI::App* command, Thresholds& t) {
@@ -114,7 +118,16 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings) {
   if (!settings.target.empty()) o.target = parseVec3(settings.target, "--target");
   if (settings.fovYDegrees > 0) o.fovYDegrees = settings.fovYDegrees;
   if (!settings.attributes.empty()) o.attributes = settings.attributes;
-  return rc::loadScene(spec, o);
+  Scene scene = rc::loadScene(spec, o);
+  if (std::size_t(settings.maxTriangles) < scene.mesh.triangleCount()) {
+    throw badInput(spec, std::to_string(scene.mesh.triangleCount()) + " triangles exceed --max-triangles " +
+                             std::to_string(settings.maxTriangles));
+  }
+  if (std::max(scene.camera.width(), scene.camera.height()) > settings.maxImageSide) {
+    throw badInput(spec, "image " + std::to_string(scene.camera.width()) + "x" + std::to_string(scene.camera.height()) +
+                             " exceeds --max-image-side " + std::to_string(settings.maxImageSide));
+  }
+  return scene;
 }
 
 void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs) {

@@ -21,6 +21,8 @@ struct RenderSettings {
   std::string eye, target;  // "x,y,z" camera overrides, or empty
   double fovYDegrees = 0;  // vertical field of view override; 0 keeps the scene's
   std::vector<std::string> attributes;  // narrows the attributes written; empty keeps all
+  long long maxTriangles = 20'000'000;  // larger scenes are refused (memory stays bounded)
+  int maxImageSide = 16384;             // larger images are refused (OpenEXR's limit is 16384)
 };
 
 void addRenderOptions(CLI::App* command, RenderSettings& settings);

@@ -21,6 +21,7 @@ packages=(
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(chromium)           # opens the HTML report headless in the tests
   packages+=(clang libclang-rt-14-dev)  # libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
+  packages+=(locales util-linux)  # a comma-decimal locale and a pseudo-terminal for the CLI tests
 fi
 
 missing=()
@@ -30,8 +31,18 @@ for p in "${packages[@]}"; do
   fi
 done
 
+# With --test, as root: generate the de_DE.UTF-8 locale the locale test runs under.
+ensure_test_locale() {
+  if [[ "${1:-}" == "--test" && $(id -u) -eq 0 ]] && ! locale -a 2>/dev/null | grep -qi '^de_DE.utf8$'; then
+    sed -i 's/^# *de_DE.UTF-8 UTF-8/de_DE.UTF-8 UTF-8/' /etc/locale.gen
+    grep -q '^de_DE.UTF-8 UTF-8' /etc/locale.gen || echo 'de_DE.UTF-8 UTF-8' >> /etc/locale.gen
+    locale-gen > /dev/null
+  fi
+}
+
 if ((${#missing[@]} == 0)); then
   echo "setup: all ${#packages[@]} packages are installed"
+  ensure_test_locale "${1:-}"
   exit 0
 fi
 if [[ $(id -u) -ne 0 ]]; then
@@ -43,3 +54,4 @@ echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"
+ensure_test_locale "${1:-}"

@@ -7,28 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
+#include "tests/run_command.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exitCode;
-  std::string output;  // stdout and stderr
-};
+using CliRun = rc::testing::CommandResult;
 
-CliRun run(const std::string& args) {
-  const char* exe = std::getenv("RASTERCHECK_EXE");
-  if (!exe) throw std::runtime_error("RASTERCHECK_EXE is not set; run through ctest");
-  const std::string command = std::string(exe) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
 
 fs::path freshDir() {
   const fs::path dir = fs::temp_directory_path() /
@@ -155,12 +142,8 @@ TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
   if (std::system("script -qec true /dev/null > /dev/null 2>&1") != 0) {
     GTEST_SKIP() << "no pseudo-terminal can be created here (/dev/pts): the terminal bar was not tested";
   }
-  const std::string command = "script -qec '" + std::string(std::getenv("RASTERCHECK_EXE")) + " check cube sphere' /dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string tty;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) tty.append(buffer.data(), n);
-  pclose(pipe);
+  const std::string tty =
+      rc::testing::runCommand("script -qec '" + rc::testing::rastercheckExe() + " check cube sphere' /dev/null").output;
   EXPECT_NE(tty.find("\r\033[K["), std::string::npos) << "no bar redrawn in place";
   EXPECT_EQ(tty.find("rastercheck: [1/4]"), std::string::npos) << "plain lines on a terminal";
 }

@@ -2,7 +2,6 @@
 // no console errors and shows its images.
 #include <gtest/gtest.h>
 #include <png.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -11,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "tests/run_command.h"
 #include "tests/test_files.h"
 
 namespace {
@@ -18,12 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::pair<int, std::string> shell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  const rc::testing::CommandResult r = rc::testing::runCommand(command);
+  return {r.exitCode, r.output};
 }
 
 std::string chromium() {
@@ -51,7 +47,7 @@ std::string openInChromium(const std::string& url, const std::string& screenshot
 
 std::string makeReport(const rc::testing::TempDir& dir) {
   const std::string out = dir.file("report");
-  const auto [code, output] = shell(std::string(std::getenv("RASTERCHECK_EXE")) + " check floor cube -q --report " + out);
+  const auto [code, output] = shell(rc::testing::rastercheckExe() + " check floor cube -q --report " + out);
   EXPECT_EQ(code, 0) << output;
   return out;
 }

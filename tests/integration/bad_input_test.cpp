@@ -1,0 +1,322 @@
+// Hostile and broken input, tried through the CLI as a user or an attacker would: each case
+// must give its documented exit code, a stderr message naming the file and the place, and
+// leave no output file behind (docs/security.md lists the cases and limits).
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tests/run_command.h"
+#include "tests/test_files.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rc::testing::TempDir;
+
+using Outcome = rc::testing::CommandResult;
+
+Outcome rastercheck(const std::string& args, const std::string& env = "") { return rc::testing::runRastercheck(args, env); }
+
+bool emptyOrAbsent(const fs::path& dir) { return !fs::exists(dir) || fs::is_empty(dir); }
+
+// Runs `check INPUT` with every output aimed into OUT, and checks code, message and no output.
+void expectRefusedCheck(const TempDir& dir, const std::string& input, int code, const std::string& fragment,
+                        const std::string& extra = "") {
+  const fs::path out = dir.path() / "out";
+  fs::remove_all(out);
+  const Outcome r = rastercheck("check " + input + " " + extra + " -q --out " + out.string() + " --report " +
+                                (out / "report").string() + " --json " + (out / "r.json").string());
+  EXPECT_EQ(r.exitCode, code) << input << "\n" << r.output;
+  EXPECT_NE(r.output.find(fragment), std::string::npos) << "'" << fragment << "' not named:\n" << r.output;
+  EXPECT_NE(r.output.find("rastercheck: error: "), std::string::npos) << r.output;
+  for (const auto& entry : fs::recursive_directory_iterator(out, fs::directory_options::skip_permission_denied)) {
+    EXPECT_TRUE(entry.is_directory()) << "output left behind: " << entry.path();
+  }
+}
+
+TEST(BadInput, SceneFiles) {
+  TempDir dir;
+  dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string ok = R"("meshes": [{"path": "tri.obj"}])";
+  const struct { const char* name; std::string json; int code; const char* fragment; } cases[] = {
+      {"empty.json", "", 3, "empty.json"},
+      {"bom.json", "\xEF\xBB\xBF{" + ok + "}", 0, ""},  // a byte-order mark is accepted (nlohmann skips it)
+      {"truncated.json", "{" + ok + ", \"camera\": {\"eye\": [0, 0", 3, "truncated.json"},
+      {"nested.json", std::string(100000, '[') + std::string(100000, ']'), 3, "nested.json"},
+      {"nan.json", "{" + ok + ", \"camera\": {\"near\": NaN}}", 3, "nan.json"},
+      {"infinity.json", "{" + ok + ", \"camera\": {\"near\": Infinity}}", 3, "infinity.json"},
+      {"huge.json", "{" + ok + ", \"camera\": {\"near\": 1e999}}", 3, "huge.json"},
+      {"width.json", "{" + ok + ", \"image\": {\"width\": -3}}", 3, "/image/width"},
+      {"zero.json", "{" + ok + ", \"image\": {\"height\": 0}}", 3, "/image/height"},
+      {"enormous.json", "{" + ok + ", \"image\": {\"width\": 1000000000}}", 3, "/image/width"},
+      {"big63.json", "{" + ok + ", \"image\": {\"width\": 9223372036854775808}}", 3, "/image/width"},
+      {"fov0.json", "{" + ok + ", \"camera\": {\"fov_y_degrees\": 0}}", 3, "field of view"},
+      {"fov180.json", "{" + ok + ", \"camera\": {\"fov_y_degrees\": 180}}", 3, "field of view"},
+      {"near.json", "{" + ok + ", \"camera\": {\"near\": -1}}", 3, "near"},
+      {"nearfar.json", "{" + ok + ", \"camera\": {\"near\": 2, \"far\": 1}}", 3, "far"},
+      {"eye.json", "{" + ok + ", \"camera\": {\"eye\": [1, 1, 1], \"target\": [1, 1, 1]}}", 3, "same point"},
+      {"up.json", "{" + ok + ", \"camera\": {\"up\": [0, 0, 0]}}", 3, "up vector"},
+      {"duplicate.json", "{" + ok + ", " + ok + "}", 3, "duplicate key"},
+      {"unknown.json", "{" + ok + ", \"lights\": []}", 3, "/lights"},
+      {"escape.json", R"({"meshes": [{"path": "../../etc/passwd.obj"}]})", 3, "/meshes/0/path"},
+      {"absolute.json", R"({"meshes": [{"path": "/etc/passwd.obj"}]})", 3, "/meshes/0/path"},
+      {"missing.json", R"({"meshes": [{"path": "gone.obj"}]})", 4, "gone.obj"},
+      {"directory.json", R"({"meshes": [{"path": "sub.obj"}]})", 4, "sub.obj"},
+  };
+  fs::create_directories(dir.path() / "sub.obj");
+  for (const auto& c : cases) {
+    const std::string path = dir.write(c.name, c.json);
+    if (c.code == 0) {
+      EXPECT_EQ(rastercheck("check -q " + path).exitCode, 0) << c.name;
+      continue;
+    }
+    expectRefusedCheck(dir, path, c.code, c.fragment);
+  }
+  // A link that leaves the folder is refused even though its name looks local.
+  fs::create_symlink("/etc", dir.path() / "link");
+  expectRefusedCheck(dir, dir.write("link.json", R"({"meshes": [{"path": "link/passwd.obj"}]})"), 3, "outside");
+}
+
+TEST(BadInput, ObjFiles) {
+  TempDir dir;
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  const struct { const char* name; std::string text; const char* fragment; } cases[] = {
+      {"index0.obj", v + "f 0 1 2\n", "index0.obj"},
+      {"range.obj", v + "f 1 2 4\n", "range.obj:4"},
+      {"negative.obj", v + "f -99 1 2\n", "negative.obj"},
+      {"two.obj", v + "f 1 2\n", "two.obj"},
+      {"mixed.obj", v + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n", "mixed.obj:6"},
+      {"word.obj", v + "v one 0 0\nf 1 2 3\n", "word.obj:4"},
+      {"nan.obj", v + "v nan 0 0\nf 1 2 4\n", "nan.obj:4"},
+      {"inf.obj", v + "v 0 inf 0\nf 1 2 4\n", "inf.obj:4"},
+      {"big.obj", v + "v 0 0 1e39\nf 1 2 4\n", "big.obj:4"},
+      {"longline.obj", "v " + std::string(10'000'000, '7') + " 0 0\n" + v + "f 2 3 4\n", "longline.obj:1"},
+      {"nofaces.obj", v, "nofaces.obj"},
+  };
+  for (const auto& c : cases) expectRefusedCheck(dir, dir.write(c.name, c.text), 3, c.fragment);
+  // CR-only line endings: tinyobjloader does not split lines at a lone CR, so the file reads
+  // as one statement and is refused (it has no faces), never misread.
+  expectRefusedCheck(dir, dir.write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r"), 3, "cr.obj");
+}
+
+std::string uint32le(std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
+
+TEST(BadInput, GltfAndGlbFiles) {
+  TempDir dir;
+  const std::string buffer =
+      "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=";
+  const auto gltf = [&](const std::string& uri, int count, int lastIndexAccessorCount) {
+    return R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+      "buffers": [{"uri": ")" + uri + R"(", "byteLength": 44}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + std::to_string(count) + R"(, "type": "VEC3"},
+                    {"bufferView": 1, "componentType": 5123, "count": )" + std::to_string(lastIndexAccessorCount) +
+           R"(, "type": "SCALAR"}]})";
+  };
+  EXPECT_EQ(rastercheck("check -q " + dir.write("ok.gltf", gltf(buffer, 3, 3))).exitCode, 0);
+  expectRefusedCheck(dir, dir.write("accessor.gltf", gltf(buffer, 1000, 3)), 3, "accessors[0]");
+  expectRefusedCheck(dir, dir.write("indices.gltf", gltf(buffer, 2, 3)), 3, "accessors[1]");
+  for (const char* uri : {"../x.bin", "/etc/passwd", "file:///etc/passwd", "http://127.0.0.1/x.bin",
+                          "x$(id).bin", "x`id`.bin", "x;rm.bin"}) {
+    expectRefusedCheck(dir, dir.write("uri.gltf", gltf(uri, 3, 3)), 3, "/buffers/0/uri");
+  }
+  std::string json = gltf("x.bin", 3, 3);
+  while (json.size() % 4) json += ' ';
+  const std::string glbBody = uint32le(std::uint32_t(json.size())) + "JSON" + json;
+  const std::string header = "glTF" + uint32le(2);
+  expectRefusedCheck(dir, dir.write("length.glb", header + uint32le(7) + glbBody), 3, "length.glb: byte 8");
+  expectRefusedCheck(dir, dir.write("version.glb", "glTF" + uint32le(1) + uint32le(std::uint32_t(12 + glbBody.size())) + glbBody),
+                     3, "version.glb: byte 4");
+  expectRefusedCheck(dir, dir.write("chunk.glb", header + uint32le(24) + uint32le(0xFFFFFFFFu) + "JSON{}  "), 3,
+                     "chunk.glb: byte 12");
+  expectRefusedCheck(dir, dir.write("magic.glb", "glTX" + uint32le(2) + uint32le(std::uint32_t(12 + glbBody.size())) + glbBody),
+                     3, "magic.glb");
+}
+
+// Offset of the first byte after an EXR header (where the chunk table starts), by walking its
+// attribute list: name\0 type\0 size value, ended by an empty name.
+std::size_t endOfHeader(const std::string& bytes) {
+  std::size_t p = 8;
+  while (bytes[p] != '\0') {
+    p = bytes.find('\0', p) + 1;  // name
+    p = bytes.find('\0', p) + 1;  // type
+    std::int32_t size;
+    std::memcpy(&size, bytes.data() + p, 4);
+    p += 4 + std::size_t(size);
+  }
+  return p + 1;
+}
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+void writeHalfExr(const std::string& path) {
+  Imf::Header header(4, 4);
+  for (const char* name : {"tri.id", "bary.b0", "bary.b1", "bary.b2", "depth.z"}) {
+    header.channels().insert(name, Imf::Channel(std::string(name) == "tri.id" ? Imf::UINT : Imf::HALF));
+  }
+  Imf::OutputFile file(path.c_str(), header);
+  std::vector<std::uint32_t> ids(16, 0);
+  std::vector<std::uint16_t> halves(16, 0x3C00);  // 1.0
+  Imf::FrameBuffer slices;
+  slices.insert("tri.id", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(ids.data()), 4, 16));
+  for (const char* name : {"bary.b0", "bary.b1", "bary.b2", "depth.z"}) {
+    slices.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data()), 2, 8));
+  }
+  file.setFrameBuffer(slices);
+  file.writePixels(4);
+}
+
+TEST(BadInput, ExrFilesGivenToCompare) {
+  TempDir dir;
+  const std::string good = dir.file("good.exr"), other = dir.file("other.exr");
+  ASSERT_EQ(rastercheck("render cube --size 32x24 -o " + good).exitCode, 0);
+  ASSERT_EQ(rastercheck("render cube --size 32x24 --backend reference -o " + other).exitCode, 0);
+  const std::string bytes = readAll(good);
+  const std::size_t table = endOfHeader(bytes);
+
+  std::string corruptTable = bytes;
+  for (std::size_t i = table; i < table + 8 * 2; ++i) corruptTable[i] = '\xFF';
+  for (std::size_t i = table + 8 * 2; i < bytes.size(); i += 97) corruptTable[i] = char(corruptTable[i] ^ 0x5A);
+  std::string window = bytes;
+  const std::size_t dw = window.find("dataWindow") + std::strlen("dataWindow") + 1 + std::strlen("box2i") + 1 + 4;
+  const std::int32_t absurd[4] = {0, 0, 1 << 30, 1 << 30};
+  std::memcpy(window.data() + dw, absurd, 16);
+  std::string inverted = bytes;
+  const std::int32_t backwards[4] = {10, 10, 0, 0};
+  std::memcpy(inverted.data() + dw, backwards, 16);
+  writeHalfExr(dir.file("half.exr"));
+  ASSERT_EQ(rastercheck("render sphere --size 32x24 -o " + dir.file("sphere.exr")).exitCode, 0);
+  ASSERT_EQ(rastercheck("render cube --size 24x32 -o " + dir.file("portrait.exr")).exitCode, 0);
+
+  const struct { std::string file; int code; const char* fragment; } cases[] = {
+      {dir.write("zero.exr", ""), 3, "zero.exr"},
+      {dir.write("truncated.exr", bytes.substr(0, table + 20)), 3, "truncated.exr"},
+      {dir.write("header-only.exr", bytes.substr(0, table - 30)), 3, "header-only.exr"},
+      {dir.write("table.exr", corruptTable), 3, "table.exr"},
+      {dir.write("window.exr", window), 3, "window.exr"},  // OpenEXR or our limit, naming the window
+      {dir.write("inverted.exr", inverted), 3, "inverted.exr"},
+      {dir.file("half.exr"), 3, "half.exr: channel bary.b0"},
+      {dir.file("sphere.exr"), 3, "attr.normal"},
+      {dir.file("portrait.exr"), 3, "differs"},
+      {dir.file("absent.exr"), 4, "absent.exr"},
+      {dir.write("text.exr", "P6\n1 1\n255\n   "), 3, "text.exr"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = dir.path() / "out";
+    fs::create_directories(out);
+    const Outcome r = rastercheck("compare " + c.file + " " + other + " --json " + (out / "r.json").string() +
+                                  " --heatmap " + (out / "h.exr").string() + " --heatmap-png " + (out / "h.png").string());
+    EXPECT_EQ(r.exitCode, c.code) << c.file << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.fragment), std::string::npos) << c.fragment << "\n" << r.output;
+    EXPECT_TRUE(emptyOrAbsent(out)) << c.file << " left output behind";
+  }
+}
+
+// A 4x4 render-layout EXR, every pixel on triangle 0, with `special` at pixel 5 of bary.b1.
+void writeFloatExr(const std::string& path, float special) {
+  Imf::Header header(4, 4);
+  const char* floats[] = {"bary.b0", "bary.b1", "bary.b2", "depth.z"};
+  header.channels().insert("tri.id", Imf::Channel(Imf::UINT));
+  for (const char* name : floats) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  std::vector<std::uint32_t> ids(16, 0);
+  std::vector<std::vector<float>> planes(4, std::vector<float>(16, 0.25f));
+  planes[1][5] = special;
+  Imf::FrameBuffer slices;
+  slices.insert("tri.id", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(ids.data()), 4, 16));
+  for (int i = 0; i < 4; ++i) slices.insert(floats[i], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[i].data()), 4, 16));
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(slices);
+  file.writePixels(4);
+}
+
+TEST(BadInput, NanOrInfInEitherImageFailsTheGateAndIsCounted) {
+  TempDir dir;
+  writeFloatExr(dir.file("clean.exr"), 0.25f);
+  writeFloatExr(dir.file("nan.exr"), std::numeric_limits<float>::quiet_NaN());
+  writeFloatExr(dir.file("inf.exr"), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(rastercheck("compare " + dir.file("clean.exr") + " " + dir.file("clean.exr")).exitCode, 0);
+  const struct { const char* test; const char* ref; const char* counted; } cases[] = {
+      {"nan.exr", "clean.exr", "\"nan\": 1"}, {"clean.exr", "nan.exr", "\"nan\": 1"},
+      {"inf.exr", "clean.exr", "\"inf\": 1"}, {"clean.exr", "inf.exr", "\"inf\": 1"}, {"nan.exr", "nan.exr", "\"nan\": 1"}};
+  for (const auto& c : cases) {
+    // Even with thresholds that let any finite error through.
+    const Outcome r = rastercheck("compare " + dir.file(c.test) + " " + dir.file(c.ref) + " --max-bary 1e30 --max-depth 1e30" +
+                                  " --max-disagreement 1 --max-coverage 1 --json " + dir.file("r.json"));
+    EXPECT_EQ(r.exitCode, 1) << c.test << " vs " << c.ref << "\n" << r.output;
+    EXPECT_NE(readAll(dir.file("r.json")).find(c.counted), std::string::npos) << c.test << " vs " << c.ref;
+  }
+}
+
+TEST(BadInput, OutputPaths) {
+  TempDir dir;
+  const std::string exr = dir.file("cube.exr");
+  ASSERT_EQ(rastercheck("render cube -o " + exr).exitCode, 0);
+  const Outcome missing = rastercheck("compare " + exr + " " + exr + " --json " + dir.file("no/such/folder/r.json"));
+  EXPECT_EQ(missing.exitCode, 4) << missing.output;
+  EXPECT_NE(missing.output.find("no/such/folder"), std::string::npos);
+  // /proc refuses new files even to root: a read-only folder that CI (as root) cannot bypass.
+  const Outcome readOnly = rastercheck("render cube -o /proc/rastercheck.exr");
+  EXPECT_EQ(readOnly.exitCode, 4) << readOnly.output;
+  EXPECT_NE(readOnly.output.find("/proc/rastercheck.exr"), std::string::npos);
+  const Outcome readOnlyDir = rastercheck("check cube -q --out /proc/rastercheck-out");
+  EXPECT_EQ(readOnlyDir.exitCode, 4) << readOnlyDir.output;
+  const std::uintmax_t size = fs::file_size(exr);
+  const Outcome same = rastercheck("compare " + exr + " " + exr + " --json " + exr);
+  EXPECT_EQ(same.exitCode, 2) << same.output;
+  EXPECT_EQ(fs::file_size(exr), size) << "the input was overwritten";
+  const Outcome folder = rastercheck("render cube -o " + dir.path().string());
+  EXPECT_EQ(folder.exitCode, 4) << folder.output;
+}
+
+TEST(BadInput, Options) {
+  for (const char* args : {"check --frobnicate", "check --max-bary", "check --max-bary -1", "check --max-bary nan",
+                           "check --max-bary 1e309", "check --max-bary ''", "check --threads -1",
+                           "check --threads 1000000000", "check --size 0x0", "check --size 99999x10",
+                           "check --size 10", "check --fov 180", "check --eye 1,2", "check --eye 1,2,nan",
+                           "check --max-triangles 0", "check --mode affine --mode", "render cube -o",
+                           "check --subpixel-bits 0", "check --embree-isa neon"}) {
+    const Outcome r = rastercheck(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+  }
+  // --threads 0 is documented as "all cores", not an error.
+  EXPECT_EQ(rastercheck("check cube -q --threads 0").exitCode, 0);
+}
+
+TEST(BadInput, CommaDecimalLocaleChangesNothing) {
+  if (std::system("locale -a 2>/dev/null | grep -qi '^de_DE.utf8$'") != 0) {
+    GTEST_SKIP() << "the de_DE.UTF-8 locale is not installed (scripts/setup.sh --test generates it)";
+  }
+  TempDir dir;
+  dir.write("s.json", R"({"meshes": [{"path": "t.obj", "transform": {"scale": 0.5}}], "camera": {"eye": [0.25, 0.5, 2.5]}})");
+  dir.write("t.obj", "v -1.5 -1.25 0.5\nv 1.5 -1.0 0.25\nv 0.0 1.75 -0.5\nvt 0.5 0.25\nvt 0.75 0.5\nvt 0.125 0.875\nf 1/1 2/2 3/3\n");
+  std::string reports[2];
+  const char* locales[2] = {"LC_ALL=C", "LC_ALL=de_DE.UTF-8 LANG=de_DE.UTF-8"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string exr = dir.file("r.exr");  // same names in both runs: reports hold paths
+    const Outcome render = rastercheck("render " + dir.file("s.json") + " -o " + exr + " --max-bary 0.5", locales[i]);
+    ASSERT_EQ(render.exitCode, 2) << "--max-bary is not a render option: " << render.output;
+    ASSERT_EQ(rastercheck("render " + dir.file("s.json") + " -o " + exr, locales[i]).exitCode, 0);
+    const Outcome compare = rastercheck("compare " + exr + " " + exr + " --max-bary 0.5 --json " + dir.file("c.json"), locales[i]);
+    ASSERT_EQ(compare.exitCode, 0) << compare.output;
+    reports[i] = readAll(dir.file("c.json")) + readAll(exr);
+    EXPECT_NE(reports[i].find("\"bary\": 0.5"), std::string::npos) << "threshold 0.5 read as " << reports[i].substr(0, 400);
+  }
+  EXPECT_TRUE(reports[0] == reports[1]) << "the JSON report or the EXR differs between the C and de_DE locales";
+}
+
+}  // namespace
