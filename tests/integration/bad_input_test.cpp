@@ -196,6 +196,14 @@ TEST(BadInput, ExrFilesGivenToCompare) {
   const std::size_t dw = window.find("dataWindow") + std::strlen("dataWindow") + 1 + std::strlen("box2i") + 1 + 4;
   const std::int32_t absurd[4] = {0, 0, 1 << 30, 1 << 30};
   std::memcpy(window.data() + dw, absurd, 16);
+  // Regression (found by fuzzing): a small file declaring a large but legal window made
+  // readExr allocate all planes before OpenEXR noticed the data was missing.
+  std::string implausible = bytes;
+  const std::int32_t large[4] = {0, 0, 3999, 3999};  // 4000x4000, ~700 MB of planes in a ~30 KB file
+  std::memcpy(implausible.data() + dw, large, 16);
+  std::string budget = bytes;
+  const std::int32_t huge[4] = {0, 0, 16383, 16383};  // 16384^2 x 12 channels x 4 bytes > 4 GiB
+  std::memcpy(budget.data() + dw, huge, 16);
   std::string inverted = bytes;
   const std::int32_t backwards[4] = {10, 10, 0, 0};
   std::memcpy(inverted.data() + dw, backwards, 16);
@@ -210,6 +218,8 @@ TEST(BadInput, ExrFilesGivenToCompare) {
       {dir.write("table.exr", corruptTable), 3, "table.exr"},
       {dir.write("window.exr", window), 3, "window.exr"},  // OpenEXR or our limit, naming the window
       {dir.write("inverted.exr", inverted), 3, "inverted.exr"},
+      {dir.write("implausible.exr", implausible), 3, "implausible.exr: dataWindow: declares"},
+      {dir.write("budget.exr", budget), 3, "budget.exr"},  // OpenEXR (chunk table) or our 4 GiB limit
       {dir.file("half.exr"), 3, "half.exr: channel bary.b0"},
       {dir.file("sphere.exr"), 3, "attr.normal"},
       {dir.file("portrait.exr"), 3, "differs"},
