@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 
+#include "app/bench.h"
 #include "app/check.h"
 #include "app/commands.h"
 #include "app/html_report.h"
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 struct CheckArgs {
   std::vector<std::string> scenes;
-  std::string out, report, json;
+  std::string out, report, json, benchJson;
   bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
@@ -79,6 +80,8 @@ int runCheck(CheckArgs& args) {
   if (args.scenes.empty()) args.scenes = defaultSceneNames();
   if (!args.out.empty()) makeFolder(args.out);
   if (!args.report.empty()) makeFolder(args.report);
+  if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
+  const std::vector<BenchRow> bench = args.benchJson.empty() ? std::vector<BenchRow>{} : readBenchJson(args.benchJson);
   const bool wantHeatmap = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
@@ -133,7 +136,7 @@ int runCheck(CheckArgs& args) {
     rows.push_back(row);
   }
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
-  if (!args.report.empty()) writeHtmlReport(args.report, reportScenes, settingsLine(args.settings));
+  if (!args.report.empty()) writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
   if (!args.json.empty()) {
     const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
@@ -153,6 +156,7 @@ void registerCheck(CLI::App& root, Action& action) {
   command->add_option("--out", args->out, "write raster, reference and heatmap EXRs and PNGs to this folder");
   command->add_option("--report", args->report, "write a self-contained HTML report (index.html and images) to this folder");
   command->add_option("--json", args->json, "write a JSON report of every scene here");
+  command->add_option("--bench-json", args->benchJson, "with --report: show these bench results (rastercheck bench --json) as a chart");
   command->add_flag("-v,--verbose", args->verbose, "print the full comparison table per scene");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);

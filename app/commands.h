@@ -13,5 +13,6 @@ void registerScenes(CLI::App& root, Action& action);
 void registerRender(CLI::App& root, Action& action);
 void registerCompare(CLI::App& root, Action& action);
 void registerCheck(CLI::App& root, Action& action);
+void registerBench(CLI::App& root, Action& action);
 
 }  // namespace rc::app

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/bench.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
 
@@ -105,9 +106,28 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   html << "</table>\n</section>\n";
 }
 
+void benchSection(std::ostringstream& html, const std::string& dir, const std::vector<BenchRow>& rows) {
+  writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows));
+  html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
+       << "<p>From bench results: medians over runs in one process; error is the p99.9 barycentric error against "
+       << "the reference; dashed lines mark each scene's Pareto front.</p>\n"
+       << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
+       << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>reference trace ms</th>"
+       << "<th>speedup</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
+  for (const BenchRow& r : rows) {
+    html << "<tr><td>" << escape(r.scene) << "</td><td>" << escape(r.setting) << (r.isDefault ? " (default)" : "")
+         << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>"
+         << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
+         << formatNumber(r.baryMax) << "</td><td>" << formatNumber(r.baryP999) << "</td><td>"
+         << formatNumber(r.disagreementFraction) << "</td></tr>\n";
+  }
+  html << "</table>\n</section>\n";
+}
+
 }  // namespace
 
-void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings) {
+void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
+                     const std::vector<BenchRow>& bench) {
   std::size_t failed = 0;
   for (const ReportScene& s : scenes) failed += s.report.pass ? 0 : 1;
   std::ostringstream html;
@@ -122,6 +142,7 @@ void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& sce
        << "(bright); green: different triangle; cyan: covered by one side only; magenta: NaN or Inf; grey: "
        << "empty. Thresholds and their origin: docs/compare.md.</p>\n";
   for (const ReportScene& s : scenes) sceneSection(html, s);
+  if (!bench.empty()) benchSection(html, dir, bench);
   html << "</body>\n</html>\n";
   writeTextFile((std::filesystem::path(dir) / "index.html").string(), html.str());
 }

@@ -17,7 +17,11 @@ struct ReportScene {
   CompareReport report;
 };
 
-// Writes DIR/index.html (atomically). `settings` is one line describing the run.
-void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings);
+struct BenchRow;
+
+// Writes DIR/index.html (atomically). `settings` is one line describing the run. With bench
+// rows, it also writes DIR/bench.svg and shows it with a table of the rows.
+void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
+                     const std::vector<BenchRow>& bench = {});
 
 }  // namespace rc::app

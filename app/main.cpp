@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   rc::app::registerRender(root, action);
   rc::app::registerCompare(root, action);
   rc::app::registerCheck(root, action);
+  rc::app::registerBench(root, action);
   try {
     root.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -66,16 +66,49 @@ struct Planes {
 
 }  // namespace
 
-Framebuffer renderReference(const Scene& scene, const ReferenceOptions& options) {
+struct ReferenceTracer::Impl {
+  const Scene& scene;
+  ReferenceOptions options;
+  int threads;
+  EmbreeDevice device;
+  EmbreeScene embreeScene;
+
+  Impl(const Scene& s, const ReferenceOptions& o)
+      : scene(s), options(o), threads(resolveThreadCount(o.threads)),
+        device("isa=" + o.isa + ",threads=" + std::to_string(threads) + ",verbose=0"),
+        embreeScene(device, RTC_SCENE_FLAG_ROBUST) {
+    buildGeometry(device, embreeScene, scene.mesh, scene.camera.spec().eye);
+  }
+};
+
+namespace {
+
+const ReferenceOptions& checkIsa(const ReferenceOptions& options) {
   if (!cpuSupports(options.isa)) {
     throw usageError("this CPU lacks the Embree ISA '" + options.isa +
                      "'; choose another with --embree-isa (results differ between ISAs)");
   }
-  const int threads = resolveThreadCount(options.threads);
-  EmbreeDevice device("isa=" + options.isa + ",threads=" + std::to_string(threads) + ",verbose=0");
-  EmbreeScene embreeScene(device, RTC_SCENE_FLAG_ROBUST);
+  return options;
+}
+
+}  // namespace
+
+ReferenceTracer::ReferenceTracer(const Scene& scene, const ReferenceOptions& options)
+    : impl_(std::make_unique<Impl>(scene, checkIsa(options))) {}
+
+ReferenceTracer::~ReferenceTracer() = default;
+
+Framebuffer renderReference(const Scene& scene, const ReferenceOptions& options) {
+  return ReferenceTracer(scene, options).trace();
+}
+
+Framebuffer ReferenceTracer::trace() const {
+  const Scene& scene = impl_->scene;
+  const ReferenceOptions& options = impl_->options;
+  const int threads = impl_->threads;
+  EmbreeDevice& device = impl_->device;
+  const EmbreeScene& embreeScene = impl_->embreeScene;
   const Camera& camera = scene.camera;
-  buildGeometry(device, embreeScene, scene.mesh, camera.spec().eye);
 
   Framebuffer fb(camera.width(), camera.height());
   Planes planes{fb.addUint(channels::kTriangleId, channels::kNoTriangle), {}, nullptr, {}};

@@ -3,6 +3,7 @@
 // and the camera's double-precision ray. Same entry shape as the rasterizer.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/framebuffer.h"
@@ -16,7 +17,23 @@ struct ReferenceOptions {
                              // avx512; results differ between ISAs, so it is never left to Embree
 };
 
-// Throws usageError when the CPU lacks the pinned ISA, internalError when Embree fails.
+// The reference in its two phases, so they can be timed apart: construction builds Embree's
+// BVH, trace() shoots the rays. The scene must outlive the tracer.
+// Both throw usageError when the CPU lacks the pinned ISA, internalError when Embree fails.
+class ReferenceTracer {
+ public:
+  ReferenceTracer(const Scene& scene, const ReferenceOptions& options);
+  ~ReferenceTracer();
+  ReferenceTracer(const ReferenceTracer&) = delete;
+  ReferenceTracer& operator=(const ReferenceTracer&) = delete;
+  Framebuffer trace() const;
+
+ private:
+  struct Impl;  // keeps Embree out of this header
+  std::unique_ptr<Impl> impl_;
+};
+
+// Build and trace in one call.
 Framebuffer renderReference(const Scene& scene, const ReferenceOptions& options);
 
 }  // namespace rc

@@ -148,6 +148,49 @@ TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
   EXPECT_EQ(tty.find("rastercheck: [1/4]"), std::string::npos) << "plain lines on a terminal";
 }
 
+TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
+  const fs::path dir = freshDir();
+  const CliRun r = run("bench cube --runs 2 -q --json " + (dir / "b.json").string() + " --csv " +
+                       (dir / "b.csv").string() + " --chart " + (dir / "b.svg").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
+  ASSERT_EQ(j["format_version"], 1);
+  const auto& rows = j["rows"];
+  ASSERT_EQ(rows.size(), 6u);
+  int defaults = 0;
+  double perspective = -1, affine = -1, dbl = -1;
+  for (const auto& row : rows) {
+    for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
+                            "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
+                            "bary_p999_error", "disagreement_fraction"}) {
+      ASSERT_TRUE(row.contains(key)) << key;
+    }
+    EXPECT_NEAR(row["speedup"].get<double>(), row["reference_trace_ms"].get<double>() / row["raster_ms"].get<double>(), 1e-9);
+    defaults += row["default"].get<bool>();
+    if (row["setting"] == "perspective-float-8bit") perspective = row["bary_p999_error"];
+    if (row["setting"] == "affine-float-8bit") affine = row["bary_p999_error"];
+    if (row["setting"] == "perspective-double-8bit") dbl = row["bary_p999_error"];
+  }
+  EXPECT_EQ(defaults, 1);
+  EXPECT_GT(affine, 100 * perspective) << "affine must show as far less accurate";
+  EXPECT_LE(dbl, perspective);
+  std::ifstream csv(dir / "b.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 7);  // header + 6 settings
+  std::ifstream svgFile(dir / "b.svg");
+  const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("Pareto"), std::string::npos);
+  EXPECT_EQ(run("bench cube --runs 0").exitCode, 2);
+  EXPECT_EQ(run("check cube --bench-json " + (dir / "b.json").string()).exitCode, 2) << "needs --report";
+  std::ofstream(dir / "bad.json") << R"({"format_version": 1, "rows": [{"scene": "x"}]})";
+  const CliRun bad = run("check cube -q --report " + (dir / "rep").string() + " --bench-json " + (dir / "bad.json").string());
+  EXPECT_EQ(bad.exitCode, 3) << bad.output;
+  EXPECT_NE(bad.output.find("/rows/0"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   const fs::path dir = freshDir();
   const std::string exr = (dir / "cube.exr").string();

@@ -45,9 +45,13 @@ std::string openInChromium(const std::string& url, const std::string& screenshot
   return console;
 }
 
+// A report of floor and cube, with bench results for cube shown as a chart.
 std::string makeReport(const rc::testing::TempDir& dir) {
-  const std::string out = dir.file("report");
-  const auto [code, output] = shell(rc::testing::rastercheckExe() + " check floor cube -q --report " + out);
+  const std::string out = dir.file("report"), bench = dir.file("bench.json");
+  const auto [benchCode, benchOutput] = shell(rc::testing::rastercheckExe() + " bench cube --runs 1 -q --json " + bench);
+  EXPECT_EQ(benchCode, 0) << benchOutput;
+  const auto [code, output] =
+      shell(rc::testing::rastercheckExe() + " check floor cube -q --report " + out + " --bench-json " + bench);
   EXPECT_EQ(code, 0) << output;
   return out;
 }
@@ -68,7 +72,8 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
     EXPECT_TRUE(fs::exists(fs::path(out) / (*it)[1].str())) << (*it)[1].str();
     ++images;
   }
-  EXPECT_EQ(images, 6);  // raster, reference and heatmap per scene
+  EXPECT_EQ(images, 7);  // raster, reference and heatmap per scene, and the bench chart
+  EXPECT_NE(html.find("Speed against error"), std::string::npos);
 }
 
 TEST(HtmlReport, LoadsInChromiumWithoutConsoleErrorsAndShowsItsImages) {

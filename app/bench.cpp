@@ -1,0 +1,254 @@
+// bench: measurements and their renderings.
+#include "app/bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "compare/compare.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "raytracer_ref/reference.h"
+
+namespace rc::app {
+namespace {
+
+std::string xml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+}  // namespace
+
+std::vector<BenchSetting> benchSettings(int threads) {
+  const auto make = [&](const char* name, Interpolation mode, Precision precision, int bits, int t, bool isDefault) {
+    RasterOptions o;
+    o.interpolation = mode;
+    o.precision = precision;
+    o.subpixelBits = bits;
+    o.threads = t;
+    return BenchSetting{name, o, isDefault};
+  };
+  return {make("perspective-float-8bit", Interpolation::kPerspective, Precision::kFloat, 8, threads, true),
+          make("affine-float-8bit", Interpolation::kAffine, Precision::kFloat, 8, threads, false),
+          make("perspective-double-8bit", Interpolation::kPerspective, Precision::kDouble, 8, threads, false),
+          make("perspective-float-4bit", Interpolation::kPerspective, Precision::kFloat, 4, threads, false),
+          make("perspective-float-16bit", Interpolation::kPerspective, Precision::kFloat, 16, threads, false),
+          make("perspective-float-8bit-1thread", Interpolation::kPerspective, Precision::kFloat, 8, 1, false)};
+}
+
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
+                               const std::function<void(const std::string&)>& step) {
+  std::vector<BenchRow> rows;
+  const int threads = resolveThreadCount(settings.threads);
+  for (const Scene& scene : scenes) {
+    step(scene.name + ": reference build and trace");
+    std::vector<double> build, trace;
+    Framebuffer reference;
+    for (int r = 0; r < runs; ++r) {
+      long long t0 = nowNanoseconds();
+      const ReferenceTracer tracer(scene, settings.reference);
+      build.push_back(millisecondsSince(t0));
+      t0 = nowNanoseconds();
+      reference = tracer.trace();
+      trace.push_back(millisecondsSince(t0));
+    }
+    for (const BenchSetting& setting : benchSettings(threads)) {
+      step(scene.name + ": " + setting.name);
+      std::vector<double> times;
+      Framebuffer raster;
+      for (int r = 0; r < runs; ++r) {
+        const long long t0 = nowNanoseconds();
+        raster = rasterize(scene, setting.raster);
+        times.push_back(millisecondsSince(t0));
+      }
+      const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr);
+      BenchRow row;
+      row.scene = scene.name;
+      row.setting = setting.name;
+      row.isDefault = setting.isDefault;
+      row.triangles = scene.mesh.triangleCount();
+      row.width = scene.camera.width();
+      row.height = scene.camera.height();
+      row.threads = resolveThreadCount(setting.raster.threads);
+      row.runs = runs;
+      row.rasterMs = median(times);
+      row.referenceBuildMs = median(build);
+      row.referenceTraceMs = median(trace);
+      row.speedup = row.referenceTraceMs / row.rasterMs;
+      row.speedupWithBuild = (row.referenceBuildMs + row.referenceTraceMs) / row.rasterMs;
+      row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
+      row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
+      row.baryMax = report.families[0].stats.max;
+      row.baryP999 = report.families[0].stats.p999;
+      row.disagreementFraction = report.disagreementFraction;
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+std::string benchJson(const std::vector<BenchRow>& rows) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const BenchRow& r : rows) {
+    list.push_back({{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
+                    {"threads", r.threads}, {"setting", r.setting}, {"default", r.isDefault}, {"runs", r.runs},
+                    {"raster_ms", r.rasterMs}, {"reference_build_ms", r.referenceBuildMs},
+                    {"reference_trace_ms", r.referenceTraceMs}, {"speedup", r.speedup},
+                    {"speedup_with_build", r.speedupWithBuild}, {"triangles_per_second", r.trianglesPerSecond},
+                    {"pixels_per_second", r.pixelsPerSecond}, {"bary_max_error", r.baryMax},
+                    {"bary_p999_error", r.baryP999}, {"disagreement_fraction", r.disagreementFraction}});
+  }
+  return nlohmann::json({{"format_version", 1}, {"rows", list}}).dump(2) + "\n";
+}
+
+std::vector<BenchRow> readBenchJson(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ioError(path, "cannot read bench results");
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw badInput(path, std::string("invalid JSON: ") + e.what());
+  }
+  if (!doc.is_object() || doc.value("format_version", 0) != 1 || !doc.contains("rows") || !doc["rows"].is_array()) {
+    throw badInput(path, "not a rastercheck bench report (format_version 1 with rows)");
+  }
+  std::vector<BenchRow> rows;
+  for (std::size_t i = 0; i < doc["rows"].size(); ++i) {
+    const nlohmann::json& j = doc["rows"][i];
+    const std::string at = path + ": /rows/" + std::to_string(i);
+    try {
+      BenchRow r;
+      r.scene = j.at("scene").get<std::string>();
+      r.setting = j.at("setting").get<std::string>();
+      r.isDefault = j.at("default").get<bool>();
+      r.triangles = j.at("triangles").get<std::size_t>();
+      r.width = j.at("width").get<int>();
+      r.height = j.at("height").get<int>();
+      r.threads = j.at("threads").get<int>();
+      r.rasterMs = j.at("raster_ms").get<double>();
+      r.referenceBuildMs = j.at("reference_build_ms").get<double>();
+      r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
+      r.speedup = j.at("speedup").get<double>();
+      r.baryMax = j.at("bary_max_error").get<double>();
+      r.baryP999 = j.at("bary_p999_error").get<double>();
+      r.disagreementFraction = j.at("disagreement_fraction").get<double>();
+      if (!(r.rasterMs > 0) || !std::isfinite(r.rasterMs) || !(r.baryP999 >= 0) || !std::isfinite(r.baryP999)) {
+        throw badInput(at, "raster_ms must be > 0 and bary_p999_error >= 0, both finite");
+      }
+      rows.push_back(r);
+    } catch (const nlohmann::json::exception& e) {
+      throw badInput(at, std::string("missing or mistyped field: ") + e.what());
+    }
+  }
+  if (rows.empty()) throw badInput(path + ": /rows", "no rows");
+  return rows;
+}
+
+std::string benchCsv(const std::vector<BenchRow>& rows) {
+  std::ostringstream out;
+  out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,reference_build_ms,"
+         "reference_trace_ms,speedup,speedup_with_build,triangles_per_second,pixels_per_second,"
+         "bary_max_error,bary_p999_error,disagreement_fraction\n";
+  char line[512];
+  for (const BenchRow& r : rows) {
+    std::snprintf(line, sizeof line, "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
+                  r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
+                  r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.referenceBuildMs, r.referenceTraceMs,
+                  r.speedup, r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
+                  r.disagreementFraction);
+    out << line;
+  }
+  return out.str();
+}
+
+std::string benchChartSvg(const std::vector<BenchRow>& rows) {
+  // Errors of exactly 0 (the double path) are drawn at the floor of the error axis.
+  constexpr double kErrorFloor = 1e-9;
+  double tMin = 1e30, tMax = 0, eMin = 1e30, eMax = 0;
+  for (const BenchRow& r : rows) {
+    tMin = std::min(tMin, r.rasterMs);
+    tMax = std::max(tMax, r.rasterMs);
+    eMin = std::min(eMin, std::max(r.baryP999, kErrorFloor));
+    eMax = std::max(eMax, std::max(r.baryP999, kErrorFloor));
+  }
+  const double lt0 = std::floor(std::log10(tMin)), lt1 = std::ceil(std::log10(tMax)) + (tMax == tMin);
+  const double le0 = std::floor(std::log10(eMin)), le1 = std::ceil(std::log10(eMax)) + (eMax == eMin);
+  const int W = 760, H = 480, left = 80, right = 220, top = 40, bottom = 60;
+  const auto x = [&](double ms) { return left + (std::log10(ms) - lt0) / (lt1 - lt0) * (W - left - right); };
+  const auto y = [&](double e) {
+    return H - bottom - (std::log10(std::max(e, kErrorFloor)) - le0) / (le1 - le0) * (H - top - bottom);
+  };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << left << "\" y=\"24\" font-size=\"15\">rasterizer frame time against barycentric error "
+      << "(p99.9, vs reference)</text>\n";
+  for (double d = lt0; d <= lt1; ++d) {
+    svg << "<line x1=\"" << x(std::pow(10, d)) << "\" y1=\"" << top << "\" x2=\"" << x(std::pow(10, d)) << "\" y2=\""
+        << H - bottom << "\" stroke=\"#ddd\"/><text x=\"" << x(std::pow(10, d)) - 12 << "\" y=\"" << H - bottom + 16
+        << "\">1e" << int(d) << "</text>\n";
+  }
+  for (double d = le0; d <= le1; ++d) {
+    svg << "<line x1=\"" << left << "\" y1=\"" << y(std::pow(10, d)) << "\" x2=\"" << W - right << "\" y2=\""
+        << y(std::pow(10, d)) << "\" stroke=\"#ddd\"/><text x=\"" << left - 40 << "\" y=\"" << y(std::pow(10, d)) + 4
+        << "\">1e" << int(d) << "</text>\n";
+  }
+  svg << "<text x=\"" << (left + W - right) / 2 - 40 << "\" y=\"" << H - 20 << "\">frame time (ms, log)</text>\n"
+      << "<text x=\"16\" y=\"" << (top + H - bottom) / 2 << "\" transform=\"rotate(-90 16 " << (top + H - bottom) / 2
+      << ")\">error (log; 0 drawn at 1e-9)</text>\n";
+  static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  std::map<std::string, int> series;
+  for (const BenchRow& r : rows) series.emplace(r.scene, int(series.size()));
+  for (const auto& [scene, index] : series) {
+    std::vector<const BenchRow*> points;
+    for (const BenchRow& r : rows) {
+      if (r.scene == scene) points.push_back(&r);
+    }
+    // Pareto front: no other setting of this scene is at least as fast and at least as accurate.
+    std::vector<const BenchRow*> front;
+    for (const BenchRow* p : points) {
+      const bool dominated = std::any_of(points.begin(), points.end(), [&](const BenchRow* q) {
+        return q != p && q->rasterMs <= p->rasterMs && q->baryP999 <= p->baryP999 &&
+               (q->rasterMs < p->rasterMs || q->baryP999 < p->baryP999);
+      });
+      if (!dominated) front.push_back(p);
+    }
+    std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->rasterMs < b->rasterMs; });
+    const char* colour = kColours[index % 6];
+    svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-dasharray=\"4 3\" points=\"";
+    for (const BenchRow* p : front) svg << x(p->rasterMs) << "," << y(p->baryP999) << " ";
+    svg << "\"/>\n";
+    for (const BenchRow* p : points) {
+      svg << "<circle cx=\"" << x(p->rasterMs) << "\" cy=\"" << y(p->baryP999) << "\" r=\"" << (p->isDefault ? 6 : 4)
+          << "\" fill=\"" << colour << "\"><title>" << xml(p->scene) << " " << p->setting << ": " << p->rasterMs
+          << " ms, p99.9 " << p->baryP999 << "</title></circle>\n";
+    }
+    svg << "<text x=\"" << W - right + 12 << "\" y=\"" << top + 16 + index * 18 << "\" fill=\"" << colour << "\">"
+        << xml(scene) << "</text>\n";
+  }
+  svg << "<text x=\"" << W - right + 12 << "\" y=\"" << top + 30 + int(series.size()) * 18
+      << "\" fill=\"#444\">dashed: Pareto front</text>\n<text x=\"" << W - right + 12 << "\" y=\""
+      << top + 48 + int(series.size()) * 18 << "\" fill=\"#444\">large dot: default</text>\n</svg>\n";
+  return svg.str();
+}
+
+}  // namespace rc::app

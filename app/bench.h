@@ -1,0 +1,50 @@
+// Speed against error: for each scene and each rasterizer setting, the median frame time
+// (rendering only), the reference's build and trace times, and the setting's error against the
+// reference, all measured in one process.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+
+namespace rc::app {
+
+struct BenchSetting {
+  std::string name;     // e.g. "perspective-float-8bit"
+  RasterOptions raster;
+  bool isDefault = false;
+};
+
+// The settings bench sweeps: the default, affine, double precision, 4 and 16 subpixel bits, and
+// the default on one thread (for the thread-scaling ratio).
+std::vector<BenchSetting> benchSettings(int threads);
+
+struct BenchRow {
+  std::string scene, setting;
+  bool isDefault = false;
+  std::size_t triangles = 0;
+  int width = 0, height = 0, threads = 0, runs = 0;
+  double rasterMs = 0;            // median over runs
+  double referenceBuildMs = 0;    // median over runs
+  double referenceTraceMs = 0;    // median over runs
+  double speedup = 0;             // referenceTraceMs / rasterMs
+  double speedupWithBuild = 0;    // (build + trace) / raster
+  double trianglesPerSecond = 0, pixelsPerSecond = 0;
+  double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
+};
+
+// `step` is called before each measured unit of work (progress).
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
+                               const std::function<void(const std::string&)>& step);
+
+std::string benchJson(const std::vector<BenchRow>& rows);
+// Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer.
+std::vector<BenchRow> readBenchJson(const std::string& path);
+std::string benchCsv(const std::vector<BenchRow>& rows);
+// Frame time against p99.9 barycentric error on log axes, one series per scene, the Pareto
+// front (no other setting both faster and more accurate) marked.
+std::string benchChartSvg(const std::vector<BenchRow>& rows);
+
+}  // namespace rc::app

@@ -1,0 +1,70 @@
+// `rastercheck bench [SCENE...]`: speed against error for every rasterizer setting.
+#include <cstdio>
+#include <memory>
+
+#include "app/bench.h"
+#include "app/commands.h"
+#include "app/progress.h"
+#include "compare/report.h"
+#include "core/atomic_file.h"
+#include "core/parallel.h"
+
+namespace rc::app {
+namespace {
+
+struct BenchArgs {
+  std::vector<std::string> scenes;
+  std::string json, csv, chart;
+  int runs = 5;
+  bool quiet = false;
+  RenderSettings settings;
+};
+
+int runBenchCommand(BenchArgs& args) {
+  finishRenderSettings(args.settings);
+  if (args.scenes.empty()) args.scenes = {"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"};
+  for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
+    if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes
+  }
+  std::vector<Scene> scenes;
+  for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
+  const int settingsCount = int(benchSettings(1).size());
+  Progress progress(int(scenes.size()) * (1 + settingsCount), args.quiet);
+  const std::vector<BenchRow> rows =
+      runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
+
+  std::printf("medians of %d runs; raster and trace times exclude EXR writing; %d threads unless the setting says 1\n",
+              args.runs, resolveThreadCount(args.settings.threads));
+  std::printf("%-20s %-31s %9s %9s %9s %8s %8s %9s %9s %9s\n", "scene", "setting", "raster ms", "ref build",
+              "ref trace", "speedup", "w/build", "bary max", "bary p999", "disagree");
+  for (const BenchRow& r : rows) {
+    std::printf("%-20s %-31s %9.2f %9.2f %9.2f %8.2f %8.2f %9s %9s %9s\n", r.scene.c_str(),
+                (r.setting + (r.isDefault ? " *" : "")).c_str(), r.rasterMs, r.referenceBuildMs, r.referenceTraceMs,
+                r.speedup, r.speedupWithBuild, formatNumber(r.baryMax).c_str(), formatNumber(r.baryP999).c_str(),
+                formatNumber(r.disagreementFraction).c_str());
+  }
+  std::printf("* default setting; speedup = reference trace / raster; w/build = (build + trace) / raster\n");
+  if (!args.json.empty()) writeTextFile(args.json, benchJson(rows));
+  if (!args.csv.empty()) writeTextFile(args.csv, benchCsv(rows));
+  if (!args.chart.empty()) writeTextFile(args.chart, benchChartSvg(rows));
+  return 0;
+}
+
+}  // namespace
+
+void registerBench(CLI::App& root, Action& action) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* command = root.add_subcommand(
+      "bench", "speed against error of every rasterizer setting, medians measured in one process");
+  command->add_option("scenes", args->scenes, "scenes as for check; default: blob at about 1k, 100k and 1M triangles");
+  command->add_option("--runs", args->runs, "timed runs per measurement (the median is reported)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md)");
+  command->add_option("--csv", args->csv, "write the rows as CSV");
+  command->add_option("--chart", args->chart, "write frame time against error as an SVG chart");
+  command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
+  addRenderOptions(command, args->settings);
+  command->callback([args, &action] { action = [args] { return runBenchCommand(*args); }; });
+}
+
+}  // namespace rc::app
