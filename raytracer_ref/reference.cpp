@@ -124,52 +124,66 @@ Framebuffer ReferenceTracer::trace() const {
   const int width = camera.width(), height = camera.height();
   const int tasks = (height + kRowsPerTask - 1) / kRowsPerTask;
   std::vector<double> embreeDiff(tasks, 0.0);  // max |Embree bary - double bary| per task
+  // Everything written for one hit is recomputed in double from the mesh and the camera's ray.
+  const auto shade = [&](int x, int y, const CameraRay& ray, unsigned primID, float u, float v, float tfar,
+                         double& embreeDiffMax) {
+    const glm::uvec3 tri = mesh.triangles[primID];
+    const glm::dvec3 embreeBary = baryFromEmbreeUv(u, v);
+    DoubleHit hit = intersectRayTriangle(ray.origin, ray.direction, glm::dvec3(mesh.positions[tri.x]),
+                                         glm::dvec3(mesh.positions[tri.y]), glm::dvec3(mesh.positions[tri.z]));
+    if (!hit.valid) hit = {true, embreeBary, double(tfar)};  // parallel to the plane: keep Embree's
+    embreeDiffMax = std::max(embreeDiffMax, glm::length(hit.b - embreeBary));
+    const std::size_t pixel = std::size_t(y) * width + x;
+    planes.id[pixel] = primID;
+    for (int i = 0; i < 3; ++i) planes.bary[i][pixel] = float(hit.b[i]);
+    planes.depth[pixel] = float(hit.t * glm::dot(ray.direction, camera.forward()));
+    for (const auto& [attribute, out] : planes.attributes) {
+      const int n = attribute->components;
+      const float* values = attribute->values.data();
+      for (int c = 0; c < n; ++c) {
+        out[c][pixel] = float(hit.b[0] * values[std::size_t(tri.x) * n + c] +
+                              hit.b[1] * values[std::size_t(tri.y) * n + c] +
+                              hit.b[2] * values[std::size_t(tri.z) * n + c]);
+      }
+    }
+  };
+  // Coherent packets of 8 rays over 4x2 pixel blocks (the performance notes measured packets
+  // with the coherent flag several times faster than single rays).
   parallelFor(tasks, threads, [&](int task) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     const int yEnd = std::min(height, (task + 1) * kRowsPerTask);
-    for (int y = task * kRowsPerTask; y < yEnd; ++y) {
-      for (int x = 0; x < width; ++x) {
-        const CameraRay ray = camera.rayThroughPixel(x, y);
-        RTCRayHit rh{};
-        rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.0f;  // camera-relative geometry
-        rh.ray.dir_x = float(ray.direction.x);
-        rh.ray.dir_y = float(ray.direction.y);
-        rh.ray.dir_z = float(ray.direction.z);
-        rh.ray.tnear = float(ray.tNear);
-        rh.ray.tfar = std::isinf(ray.tFar) ? std::numeric_limits<float>::infinity() : float(ray.tFar);
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(embreeScene.get(), &context, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-
-        const glm::uvec3 tri = mesh.triangles[rh.hit.primID];
-        const glm::dvec3 embreeBary = baryFromEmbreeUv(rh.hit.u, rh.hit.v);
-        DoubleHit hit = intersectRayTriangle(ray.origin, ray.direction, glm::dvec3(mesh.positions[tri.x]),
-                                             glm::dvec3(mesh.positions[tri.y]),
-                                             glm::dvec3(mesh.positions[tri.z]));
-        if (!hit.valid) hit = {true, embreeBary, double(rh.ray.tfar)};  // grazing: keep Embree's
-        const double diff = glm::length(hit.b - embreeBary);
-        embreeDiff[task] = std::max(embreeDiff[task], diff);
-
-        const std::size_t pixel = std::size_t(y) * width + x;
-        planes.id[pixel] = rh.hit.primID;
-        for (int i = 0; i < 3; ++i) planes.bary[i][pixel] = float(hit.b[i]);
-        planes.depth[pixel] = float(hit.t * glm::dot(ray.direction, camera.forward()));
-        for (const auto& [attribute, out] : planes.attributes) {
-          const int n = attribute->components;
-          const float* v = attribute->values.data();
-          for (int c = 0; c < n; ++c) {
-            out[c][pixel] = float(hit.b[0] * v[std::size_t(tri.x) * n + c] +
-                                  hit.b[1] * v[std::size_t(tri.y) * n + c] +
-                                  hit.b[2] * v[std::size_t(tri.z) * n + c]);
-          }
+    for (int y0 = task * kRowsPerTask; y0 < yEnd; y0 += 2) {
+      for (int x0 = 0; x0 < width; x0 += 4) {
+        alignas(32) int valid[8];
+        alignas(32) RTCRayHit8 rh{};
+        CameraRay rays[8];
+        for (int lane = 0; lane < 8; ++lane) {
+          const int x = x0 + lane % 4, y = y0 + lane / 4;
+          valid[lane] = (x < width && y < yEnd) ? -1 : 0;
+          rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+          if (!valid[lane]) continue;
+          rays[lane] = camera.rayThroughPixel(x, y);
+          rh.ray.org_x[lane] = rh.ray.org_y[lane] = rh.ray.org_z[lane] = 0.0f;  // camera-relative geometry
+          rh.ray.dir_x[lane] = float(rays[lane].direction.x);
+          rh.ray.dir_y[lane] = float(rays[lane].direction.y);
+          rh.ray.dir_z[lane] = float(rays[lane].direction.z);
+          rh.ray.tnear[lane] = float(rays[lane].tNear);
+          rh.ray.tfar[lane] = std::isinf(rays[lane].tFar) ? std::numeric_limits<float>::infinity()
+                                                          : float(rays[lane].tFar);
+          rh.ray.mask[lane] = 0xFFFFFFFFu;
+        }
+        rtcIntersect8(valid, embreeScene.get(), &context, &rh);
+        for (int lane = 0; lane < 8; ++lane) {
+          if (!valid[lane] || rh.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID) continue;
+          shade(x0 + lane % 4, y0 + lane / 4, rays[lane], rh.hit.primID[lane], rh.hit.u[lane], rh.hit.v[lane],
+                rh.ray.tfar[lane], embreeDiff[task]);
         }
       }
     }
   });
-  device.check("rtcIntersect1");
+  device.check("rtcIntersect8");
 
   addPreview(fb);
   fb.attributes[channels::header::kRenderer] = "reference";
