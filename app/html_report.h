@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench.h"
 #include "compare/compare.h"
 
 namespace rc::app {
@@ -16,8 +17,6 @@ struct ReportScene {
   double rasterMs = 0.0, referenceMs = 0.0;
   CompareReport report;
 };
-
-struct BenchRow;
 
 // Writes DIR/index.html (atomically). `settings` is one line describing the run. With bench
 // rows, it also writes DIR/bench.svg and shows it with a table of the rows.

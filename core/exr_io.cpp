@@ -12,6 +12,8 @@
 #include <ImfThreading.h>
 
 #include <cstring>
+#include <iterator>
+#include <map>
 #include <filesystem>
 #include <fstream>
 
@@ -37,6 +39,8 @@ char* planeBase(const Channel& c) {
              : reinterpret_cast<char*>(const_cast<float*>(c.floats.data()));
 }
 
+void checkHeaderSizes(const std::string& path);
+
 // Rejects what cannot be an OpenEXR file before OpenEXR sees it, with a clear reason.
 void checkOpenable(const std::string& path) {
   std::error_code ec;
@@ -51,6 +55,83 @@ void checkOpenable(const std::string& path) {
   }
   if (deep) throw badInput(path, "deep EXR files are not supported");
   if (multipart) throw badInput(path, "multi-part EXR files are not supported");
+  checkHeaderSizes(path);
+}
+
+// OpenEXR 3.1 allocates whatever size a header attribute declares (an attribute of unknown type
+// becomes an OpaqueAttribute of that many bytes): a 689-byte file found by fuzzing asked for
+// 1.6 GB. And OpenEXR reads known types by their contents, not by the declared size (a channel
+// list until its empty name, a box2i as 16 bytes, a preview as 8 + width x height x 4 bytes),
+// so a size that disagrees with the contents makes it read the rest of the header from a
+// different place than any size check looked. The single-part header is therefore walked here
+// first, as OpenEXR will read it: every size must fit in the file and agree with its contents.
+std::uint64_t expectedSize(const std::string& type) {
+  static const std::map<std::string, std::uint64_t> kFixed = {
+      {"box2i", 16},         {"box2f", 16},   {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
+      {"deepImageState", 1}, {"float", 4},    {"double", 8},      {"int", 4},       {"v2i", 8},
+      {"v2f", 8},            {"v2d", 16},     {"v3i", 12},        {"v3f", 12},      {"v3d", 24},
+      {"m33f", 36},          {"m33d", 72},    {"m44f", 64},       {"m44d", 128},    {"chromaticities", 32},
+      {"keycode", 28},       {"timecode", 8}, {"tiledesc", 9},    {"rational", 8}};
+  const auto it = kFixed.find(type);
+  return it == kFixed.end() ? 0 : it->second;
+}
+
+void checkHeaderSizes(const std::string& path) {
+  // Headers are small: the walk reads at most the first 16 MiB; a header that does not end there
+  // is refused. Sizes are checked against the whole file.
+  constexpr std::size_t kMaxHeader = std::size_t(16) << 20;
+  std::error_code ec;
+  const std::uint64_t n = std::filesystem::file_size(path, ec);
+  std::ifstream file(path, std::ios::binary);
+  std::string bytes(std::size_t(std::min<std::uint64_t>(n, kMaxHeader)), '\0');
+  file.read(bytes.data(), std::streamsize(bytes.size()));
+  std::uint64_t p = 8;  // magic and version
+  const auto where = [&](std::uint64_t at) { return path + ": byte " + std::to_string(at); };
+  const auto readString = [&](const char* what) {
+    const std::size_t end = bytes.find('\0', std::size_t(p));
+    if (end == std::string::npos) {
+      throw badInput(where(p), bytes.size() < n ? "header does not end within 16 MiB" : "truncated header");
+    }
+    if (end - p > 255) throw badInput(where(p), std::string(what) + " longer than 255 bytes");
+    std::string text = bytes.substr(std::size_t(p), end - std::size_t(p));
+    p = end + 1;
+    return text;
+  };
+  const auto readInt = [&]() {
+    if (p + 4 > bytes.size()) throw badInput(where(p), "truncated header");
+    std::int32_t v;
+    std::memcpy(&v, bytes.data() + p, 4);
+    p += 4;
+    return v;
+  };
+  for (int count = 0;; ++count) {
+    if (count > 100000) throw badInput(path, "more than 100000 header attributes");
+    const std::uint64_t start = p;
+    const std::string name = readString("attribute name");
+    if (name.empty()) return;  // end of header
+    const std::string type = readString("attribute type");
+    const std::int32_t size = readInt();
+    const std::string at = path + ": header attribute '" + name + "' at byte " + std::to_string(start);
+    if (size < 0 || p + std::uint64_t(size) > n) {
+      throw badInput(at, "declares " + std::to_string(size) + " bytes, more than the file holds");
+    }
+    const std::uint64_t valueStart = p;
+    if (const std::uint64_t fixed = expectedSize(type); fixed != 0 && std::uint64_t(size) != fixed) {
+      throw badInput(at, "a " + type + " holds " + std::to_string(fixed) + " bytes, not " + std::to_string(size));
+    }
+    if (type == "chlist") {  // name\0, then pixel type, pLinear + 3 reserved, x and y sampling
+      while (true) {
+        if (readString("channel name").empty()) break;
+        p += 16;
+        if (p > valueStart + std::uint64_t(size) || p > bytes.size()) break;
+      }
+      if (p != valueStart + std::uint64_t(size)) throw badInput(at, "channel list does not match its declared size");
+    } else if (type == "preview") {
+      const std::uint64_t w = std::uint32_t(readInt()), h = std::uint32_t(readInt());
+      if (8 + w * h * 4 != std::uint64_t(size)) throw badInput(at, "preview image does not match its declared size");
+    }
+    p = valueStart + std::uint64_t(size);
+  }
 }
 
 }  // namespace

@@ -204,6 +204,24 @@ TEST(BadInput, ExrFilesGivenToCompare) {
   std::string budget = bytes;
   const std::int32_t huge[4] = {0, 0, 16383, 16383};  // 16384^2 x 12 channels x 4 bytes > 4 GiB
   std::memcpy(budget.data() + dw, huge, 16);
+  // Regression (found by fuzzing on a fresh machine): an attribute whose size field claims
+  // 1.6 GB made OpenEXR allocate it while reading the header.
+  std::string attribute = bytes;
+  const std::size_t sizeField = attribute.find("pixelAspectRatio") + std::strlen("pixelAspectRatio") + 1 + std::strlen("float") + 1;
+  const std::int32_t claimed = 0x61686300;
+  std::memcpy(attribute.data() + sizeField, &claimed, 4);
+  // Regression (the same fuzz run): sizes that fit the file but disagree with the contents, so
+  // OpenEXR (which reads by contents) and a size-based check would walk different headers.
+  std::string chlist = bytes;
+  const std::size_t chlistSize = chlist.find("chlist") + std::strlen("chlist") + 1;
+  std::int32_t declared;
+  std::memcpy(&declared, chlist.data() + chlistSize, 4);
+  declared -= 18;
+  std::memcpy(chlist.data() + chlistSize, &declared, 4);
+  std::string fixedSize = bytes;
+  const std::size_t boxSize = fixedSize.find("box2i") + std::strlen("box2i") + 1;
+  const std::int32_t seventeen = 17;
+  std::memcpy(fixedSize.data() + boxSize, &seventeen, 4);
   std::string inverted = bytes;
   const std::int32_t backwards[4] = {10, 10, 0, 0};
   std::memcpy(inverted.data() + dw, backwards, 16);
@@ -218,6 +236,9 @@ TEST(BadInput, ExrFilesGivenToCompare) {
       {dir.write("table.exr", corruptTable), 3, "table.exr"},
       {dir.write("window.exr", window), 3, "window.exr"},  // OpenEXR or our limit, naming the window
       {dir.write("inverted.exr", inverted), 3, "inverted.exr"},
+      {dir.write("attribute.exr", attribute), 3, "attribute.exr: header attribute 'pixelAspectRatio' at byte"},
+      {dir.write("chlist.exr", chlist), 3, "chlist.exr: header attribute 'channels'"},
+      {dir.write("fixed.exr", fixedSize), 3, "fixed.exr: header attribute 'dataWindow'"},
       {dir.write("implausible.exr", implausible), 3, "implausible.exr: dataWindow: declares"},
       {dir.write("budget.exr", budget), 3, "budget.exr"},  // OpenEXR (chunk table) or our 4 GiB limit
       {dir.file("half.exr"), 3, "half.exr: channel bary.b0"},
