@@ -92,11 +92,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
        << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>worst pixel: test / reference</th></tr>\n";
   for (const FamilyReport& f : r.families) {
     const FamilyStats& st = f.stats;
-    std::string worst = "-";
-    if (st.worst.x >= 0) {
-      worst = "(" + std::to_string(st.worst.x) + ", " + std::to_string(st.worst.y) + ") " +
-              formatNumber(st.worst.test) + " / " + formatNumber(st.worst.reference);
-    }
+    const std::string worst = formatWorst(st.worst);
     html << "<tr><td>" << escape(f.name) << "</td><td>" << formatNumber(st.max) << "</td><td>" << formatNumber(st.mean)
          << "</td><td>" << formatNumber(st.rms) << "</td><td>" << formatNumber(st.p50) << "</td><td>"
          << formatNumber(st.p99) << "</td><td>" << formatNumber(st.p999) << "</td><td>" << st.nanCount + st.infCount

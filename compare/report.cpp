@@ -15,6 +15,12 @@ std::string formatNumber(double value) {
   return buf;
 }
 
+std::string formatWorst(const WorstPixel& worst) {
+  if (worst.x < 0) return "-";
+  return "(" + std::to_string(worst.x) + "," + std::to_string(worst.y) + ") " + formatNumber(worst.test) + " / " +
+         formatNumber(worst.reference);
+}
+
 namespace {
 
 // JSON has no NaN or Inf: they are written as strings so no reader mistakes them for numbers.
@@ -80,11 +86,7 @@ std::string reportToTable(const CompareReport& r) {
   out << line;
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;
-    std::string worst = "-";
-    if (s.worst.x >= 0) {
-      worst = "(" + std::to_string(s.worst.x) + "," + std::to_string(s.worst.y) + ") " +
-              formatNumber(s.worst.test) + " / " + formatNumber(s.worst.reference);
-    }
+    const std::string worst = formatWorst(s.worst);
     std::string limit = formatNumber(f.threshold);
     if (f.range > 0.0) limit += "*" + formatNumber(f.range);
     std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %9s %5zu %9s  %s\n", f.name.c_str(),

@@ -18,4 +18,7 @@ std::string reportToTable(const CompareReport& report);
 // "1.23e-07": compact, locale-independent.
 std::string formatNumber(double value);
 
+// "(x,y) test / reference", or "-" when there was no finite error.
+std::string formatWorst(const WorstPixel& worst);
+
 }  // namespace rc
