@@ -53,11 +53,16 @@ void makeFolder(const std::string& dir) {
   if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
 }
 
-void writePngs(const std::string& dir, const std::string& stem, const CheckResult& r) {
+// The three pictures of a scene, made once and written to every folder that wants them.
+struct ScenePictures {
+  Rgb8Image raster, reference, heatmap;
+};
+
+void writePngs(const std::string& dir, const std::string& stem, const ScenePictures& p) {
   const std::string base = (fs::path(dir) / stem).string();
-  writePng(displayImage(r.raster), base + ".raster.png");
-  writePng(displayImage(r.reference), base + ".reference.png");
-  writePng(heatmapImage(r.heatmap), base + ".heatmap.png");
+  writePng(p.raster, base + ".raster.png");
+  writePng(p.reference, base + ".reference.png");
+  writePng(p.heatmap, base + ".heatmap.png");
 }
 
 void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r) {
@@ -113,14 +118,17 @@ int runCheck(CheckArgs& args) {
     if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
     std::fflush(stdout);
     const std::string stem = fileStem(scene.name, stems);
+    const ScenePictures pictures = wantHeatmap ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
+                                                               heatmapImage(r.heatmap)}
+                                               : ScenePictures{};
     if (!args.out.empty()) {
       progress.step(scene.name + ": writing EXR and PNG files");
       writeExrs(args.out, stem, r);
-      writePngs(args.out, stem, r);
+      writePngs(args.out, stem, pictures);
     }
     if (!args.report.empty()) {
       progress.step(scene.name + ": writing report images");
-      writePngs(args.report, stem, r);
+      writePngs(args.report, stem, pictures);
     }
     allPass = allPass && r.report.pass;
     reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report});
