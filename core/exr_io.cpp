@@ -11,6 +11,7 @@
 #include <ImfTestFile.h>
 #include <ImfThreading.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iterator>
 #include <map>
@@ -77,20 +78,32 @@ std::uint64_t expectedSize(const std::string& type) {
 }
 
 void checkHeaderSizes(const std::string& path) {
-  // Headers are small: the walk reads at most the first 16 MiB; a header that does not end there
-  // is refused. Sizes are checked against the whole file.
+  // Headers are small: the walk reads the first 64 KiB and more (doubling) only while the
+  // header goes on, to at most 16 MiB; a header that does not end there is refused. Sizes are
+  // checked against the whole file.
   constexpr std::size_t kMaxHeader = std::size_t(16) << 20;
   std::error_code ec;
   const std::uint64_t n = std::filesystem::file_size(path, ec);
+  const std::size_t cap = std::size_t(std::min<std::uint64_t>(n, kMaxHeader));
   std::ifstream file(path, std::ios::binary);
-  std::string bytes(std::size_t(std::min<std::uint64_t>(n, kMaxHeader)), '\0');
-  file.read(bytes.data(), std::streamsize(bytes.size()));
+  std::string bytes;
+  // Loads at least the first `upTo` bytes (as far as the cap allows); false when it cannot.
+  const auto load = [&](std::uint64_t upTo) {
+    if (upTo <= bytes.size()) return true;
+    if (bytes.size() >= cap) return false;
+    const std::size_t want = std::min(cap, std::max<std::size_t>({std::size_t(upTo), 2 * bytes.size(), std::size_t(64) << 10}));
+    const std::size_t have = bytes.size();
+    bytes.resize(want);
+    file.read(bytes.data() + have, std::streamsize(want - have));
+    return upTo <= bytes.size();
+  };
   std::uint64_t p = 8;  // magic and version
   const auto where = [&](std::uint64_t at) { return path + ": byte " + std::to_string(at); };
   const auto readString = [&](const char* what) {
-    const std::size_t end = bytes.find('\0', std::size_t(p));
+    std::size_t end = bytes.find('\0', std::size_t(p));
+    while (end == std::string::npos && load(bytes.size() + 1)) end = bytes.find('\0', std::size_t(p));
     if (end == std::string::npos) {
-      throw badInput(where(p), bytes.size() < n ? "header does not end within 16 MiB" : "truncated header");
+      throw badInput(where(p), cap < n ? "header does not end within 16 MiB" : "truncated header");
     }
     if (end - p > 255) throw badInput(where(p), std::string(what) + " longer than 255 bytes");
     std::string text = bytes.substr(std::size_t(p), end - std::size_t(p));
@@ -98,7 +111,7 @@ void checkHeaderSizes(const std::string& path) {
     return text;
   };
   const auto readInt = [&]() {
-    if (p + 4 > bytes.size()) throw badInput(where(p), "truncated header");
+    if (!load(p + 4)) throw badInput(where(p), "truncated header");
     std::int32_t v;
     std::memcpy(&v, bytes.data() + p, 4);
     p += 4;
@@ -123,7 +136,7 @@ void checkHeaderSizes(const std::string& path) {
       while (true) {
         if (readString("channel name").empty()) break;
         p += 16;
-        if (p > valueStart + std::uint64_t(size) || p > bytes.size()) break;
+        if (p > valueStart + std::uint64_t(size) || p > cap) break;
       }
       if (p != valueStart + std::uint64_t(size)) throw badInput(at, "channel list does not match its declared size");
     } else if (type == "preview") {
