@@ -4,6 +4,7 @@
 
 #include "app/bench.h"
 #include "app/commands.h"
+#include "scenes/registry.h"
 #include "app/progress.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
@@ -22,7 +23,8 @@ struct BenchArgs {
 
 int runBenchCommand(BenchArgs& args) {
   finishRenderSettings(args.settings);
-  if (args.scenes.empty()) args.scenes = {"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"};
+  args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
+                                    : expandSceneGroups(args.scenes);
   for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
     if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes
   }

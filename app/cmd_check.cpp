@@ -82,7 +82,7 @@ std::string settingsLine(const RenderSettings& s) {
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
-  if (args.scenes.empty()) args.scenes = defaultSceneNames();
+  args.scenes = args.scenes.empty() ? defaultSceneNames() : expandSceneGroups(args.scenes);
   if (!args.out.empty()) makeFolder(args.out);
   if (!args.report.empty()) makeFolder(args.report);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");

@@ -88,14 +88,17 @@ glm::dmat4 Camera::clipFromView() const {
   return m;
 }
 
-CameraRay Camera::rayThroughPixel(int x, int y) const {
-  const glm::dvec2 sample = pixelCenter(x, y);
+glm::dvec3 Camera::directionThroughRaster(const glm::dvec2& r) const {
   // Inverse of rasterXFromNdc / rasterYFromNdc.
-  const double ndcX = 2.0 * sample.x / spec_.width - 1.0;
-  const double ndcY = 1.0 - 2.0 * sample.y / spec_.height;
+  const double ndcX = 2.0 * r.x / spec_.width - 1.0;
+  const double ndcY = 1.0 - 2.0 * r.y / spec_.height;
+  return forward_ + (ndcX * tanHalfFovY_ * aspect_) * right_ + (ndcY * tanHalfFovY_) * up_;
+}
+
+CameraRay Camera::rayThroughPixel(int x, int y) const {
   CameraRay ray;
   ray.origin = spec_.eye;
-  ray.direction = forward_ + (ndcX * tanHalfFovY_ * aspect_) * right_ + (ndcY * tanHalfFovY_) * up_;
+  ray.direction = directionThroughRaster(pixelCenter(x, y));
   ray.tNear = spec_.zNear;
   ray.tFar = spec_.zFar;
   return ray;

@@ -72,6 +72,16 @@ class Camera {
 
   // The ray through the centre of pixel (x, y), in double.
   CameraRay rayThroughPixel(int x, int y) const;
+  // Direction (direction . forward == 1) of the ray through raster position r, in double.
+  glm::dvec3 directionThroughRaster(const glm::dvec2& r) const;
+  // The world point seen at raster position r at the given depth (w); depth <= 0 gives points
+  // in or behind the eye plane that project (with w <= 0) to the same position.
+  glm::dvec3 worldAtRaster(const glm::dvec2& r, double depth) const {
+    return spec_.eye + depth * directionThroughRaster(r);
+  }
+  // The camera's basis in world space.
+  const glm::dvec3& right() const { return right_; }
+  const glm::dvec3& up() const { return up_; }
 
   // One line, full precision: "eye=(..) target=(..) up=(..) fovy=.. near=.. far=.. size=WxH".
   std::string describe() const;

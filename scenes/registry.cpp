@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "scenes/builtin/builtin.h"
+#include "scenes/hard/hard_scenes.h"
 
 namespace rc {
 
@@ -52,12 +53,42 @@ const std::vector<BuiltinScene>& builtinScenes() {
   static const std::vector<BuiltinScene> kScenes = {
       {"floor",
        "large checkered floor at a grazing angle (the seed notes' case: affine bends the checker)",
-       "", true, builtin::makeFloor},
-      {"cube", "cube with per-face UVs, three faces in perspective", "", true, builtin::makeCube},
-      {"sphere", "UV sphere with normals and UVs", "segments=N (4..1024, default 32)", true,
-       builtin::makeSphere},
+       "", SceneGroup::kDefault, builtin::makeFloor},
+      {"cube", "cube with per-face UVs, three faces in perspective", "", SceneGroup::kDefault,
+       builtin::makeCube},
+      {"sphere", "UV sphere with normals and UVs", "segments=N (4..1024, default 32)",
+       SceneGroup::kDefault, builtin::makeSphere},
       {"blob", "scalable bumpy ellipsoid filling most of a 1920x1080 frame, normals and UVs",
-       "tris=N (8..4000000, default 100000)", true, builtin::makeBlob},
+       "tris=N (8..4000000, default 100000)", SceneGroup::kDefault, builtin::makeBlob},
+      {"fans", "vertex fans of 3..64 triangles around pixel centres, spokes through centres", "",
+       SceneGroup::kHardCase, hard::makeFans},
+      {"edges", "shared edges exactly through pixel centres at 12 slopes, both windings", "",
+       SceneGroup::kHardCase, hard::makeEdges},
+      {"closed", "random closed mesh: jittered icosphere, randomly rotated",
+       "seed=N (default 1), level=N (0..6 subdivisions, default 3)", SceneGroup::kHardCase,
+       hard::makeClosed},
+      {"slivers", "needles of screen aspect 10..1e7 in 8 orientations", "", SceneGroup::kHardCase,
+       hard::makeSlivers},
+      {"degenerate", "zero-area, repeated-vertex and one-ulp-from-collinear triangles", "",
+       SceneGroup::kHardCase, hard::makeDegenerate},
+      {"subpixel", "triangles smaller than a pixel covering 0, 1 or 2 pixel centres", "",
+       SceneGroup::kHardCase, hard::makeSubpixel},
+      {"huge", "vertices 1e6 and 1e9 pixels outside the image", "", SceneGroup::kHardCase,
+       hard::makeHuge},
+      {"nearplane", "w just above near, behind near, behind the eye, crossing w = 0", "",
+       SceneGroup::kHardCase, hard::makeNearPlane},
+      {"perspective", "depth ratio w_max / w_min of 1e2, 1e4 and 1e6 within one triangle", "",
+       SceneGroup::kHardCase, hard::makePerspective},
+      {"grazing", "floor and wall seen at 2 down to 0.005 degrees", "", SceneGroup::kHardCase,
+       hard::makeGrazing},
+      {"faroffset", "small scene and camera moved far from the world origin",
+       "offset=D (0..1e7, default 1e5)", SceneGroup::kHardCase, hard::makeFarOffset},
+      {"depthpairs", "parallel quad pairs at z/near 3..1e6, gaps at 4x depth resolution", "",
+       SceneGroup::kHardCase, hard::makeDepthPairs},
+      {"zfight", "coplanar overlapping and repeated triangles", "", SceneGroup::kHardCase,
+       hard::makeZFight},
+      {"attributes", "attributes near 1e30, 1e-30, mixed sign, and constant", "",
+       SceneGroup::kHardCase, hard::makeAttributes},
   };
   return kScenes;
 }
@@ -65,9 +96,35 @@ const std::vector<BuiltinScene>& builtinScenes() {
 std::vector<std::string> defaultSceneNames() {
   std::vector<std::string> names;
   for (const BuiltinScene& s : builtinScenes()) {
-    if (s.inDefaultSet) names.push_back(s.name);
+    if (s.group == SceneGroup::kDefault) names.push_back(s.name);
   }
   return names;
+}
+
+std::vector<std::string> hardCaseSpecs() {
+  std::vector<std::string> specs;
+  for (const BuiltinScene& s : builtinScenes()) {
+    if (s.group != SceneGroup::kHardCase) continue;
+    if (std::string(s.name) == "faroffset") {
+      for (const char* offset : {"1e3", "1e5", "1e7"}) specs.push_back(std::string("faroffset:offset=") + offset);
+    } else if (std::string(s.name) == "closed") {
+      for (const char* seed : {"1", "2", "3"}) specs.push_back(std::string("closed:seed=") + seed);
+    } else {
+      specs.push_back(s.name);
+    }
+  }
+  return specs;
+}
+
+std::vector<std::string> expandSceneGroups(const std::vector<std::string>& specs) {
+  std::vector<std::string> out;
+  for (const std::string& spec : specs) {
+    const std::vector<std::string> group = spec == "default" ? defaultSceneNames()
+                                           : spec == "hard"  ? hardCaseSpecs()
+                                                             : std::vector<std::string>{spec};
+    out.insert(out.end(), group.begin(), group.end());
+  }
+  return out;
 }
 
 namespace {

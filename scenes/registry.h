@@ -27,16 +27,25 @@ class SceneArgs {
   std::set<std::string> used_;
 };
 
+enum class SceneGroup {
+  kDefault,   // run by `rastercheck check` without scene arguments
+  kHardCase,  // the numerical hard cases (scenes/hard/), run by `rastercheck check hard`
+};
+
 struct BuiltinScene {
   const char* name;
   const char* description;  // one line, for `rastercheck scenes`
   const char* parameters;   // "tris=N (8..4000000, default 100000)" or ""
-  bool inDefaultSet;        // run by `rastercheck check` without scene arguments
+  SceneGroup group;
   Scene (*make)(SceneArgs& args);
 };
 
 const std::vector<BuiltinScene>& builtinScenes();
 std::vector<std::string> defaultSceneNames();
+// Every hard case, parametrised ones at each value that matters (faroffset at 1e3, 1e5, 1e7).
+std::vector<std::string> hardCaseSpecs();
+// Replaces the group names "default" and "hard" in a scene list by their members.
+std::vector<std::string> expandSceneGroups(const std::vector<std::string>& specs);
 bool isBuiltinSceneSpec(const std::string& spec);
 
 // Builds and validates a built-in scene; throws usageError for an unknown name or parameter.
