@@ -39,6 +39,13 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
           std::map<std::string, Precision>{{"float", Precision::kFloat}, {"double", Precision::kDouble}},
           CLI::ignore_case))
       ->default_str("float");
+  command->add_option("--depth-mapping", s.raster.depthMapping,
+                      "rasterizer depth-test key: 1/w, or the standard d = 1 - n/w (docs/rasterizer.md)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, DepthMapping>{{"inverse-w", DepthMapping::kInverseW},
+                                              {"standard", DepthMapping::kStandard}},
+          CLI::ignore_case))
+      ->default_str("inverse-w");
   command->add_option("--subpixel-bits", s.raster.subpixelBits,
                       "fraction bits of snapped vertex positions used for coverage")
       ->check(CLI::Range(1, 16))
@@ -63,17 +70,26 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
 }
 
 void addThresholdOptions(CLI::App* command, Thresholds& t) {
-  command->add_option("--max-bary", t.bary, "gate: max barycentric error (absolute)")
+  command->add_option("--heatmap-shows", t.heatmap,
+                      "what the heatmap colours show: error, ulps, or bound (error / bound)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, HeatmapQuantity>{{"error", HeatmapQuantity::kError},
+                                                 {"ulps", HeatmapQuantity::kUlps},
+                                                 {"bound", HeatmapQuantity::kBoundRatio}},
+          CLI::ignore_case))
+      ->default_str("error");
+  // Without the diagnostics channels (images from elsewhere), these fixed limits gate instead.
+  command->add_option("--max-bary", t.bary, "gate without bound channels: max barycentric error (absolute)")
       ->check(kFiniteNonNegative)->capture_default_str();
-  command->add_option("--max-depth", t.depth, "gate: max depth error (relative)")
+  command->add_option("--max-depth", t.depth, "gate without bound channels: max depth error (relative)")
       ->check(kFiniteNonNegative)->capture_default_str();
-  command->add_option("--max-attr", t.attribute, "gate: max attribute error (fraction of its range)")
+  command->add_option("--max-attr", t.attribute, "gate without bound channels: max attribute error (fraction of its range)")
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-disagreement", t.disagreement,
-                      "gate: max fraction of covered pixels where the triangle differs")
+                      "gate without edge.dist channels: max fraction of covered pixels where the triangle differs")
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-coverage", t.coverage,
-                      "gate: max fraction of covered pixels covered by one image only")
+                      "gate without edge.dist channels: max fraction of covered pixels covered by one image only")
       ->check(kFiniteNonNegative)->capture_default_str();
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 namespace rc {
 
@@ -24,14 +25,23 @@ inline Rgb magma(double t) {
           kStops[i][2] + f * (kStops[i + 1][2] - kStops[i][2])};
 }
 
-// Log scale of the heatmap: errors at or below 10^kLogMin are the darkest, 10^kLogMax and
-// above the brightest.
-inline constexpr double kHeatLogMin = -8.0;
-inline constexpr double kHeatLogMax = -1.0;
+// Log scale of a heatmap quantity: values at or below 10^logMin are the darkest, 10^logMax
+// and above the brightest.
+struct HeatScale {
+  double logMin, logMax;
+  const char* title;  // legend title
+  const char* key;    // as recorded in the heatmap's header (rastercheck.heatmapQuantity)
+};
 
-inline Rgb heatColour(double error) {
-  if (!(error > 0.0)) return magma(0.0);
-  return magma((std::log10(error) - kHeatLogMin) / (kHeatLogMax - kHeatLogMin));
+inline HeatScale heatScaleByKey(const std::string& key) {
+  if (key == "ulps") return {-1.0, 6.0, "barycentric error in float ulps of 1 (2^-23), same triangle", "ulps"};
+  if (key == "bound") return {-4.0, 2.0, "barycentric error / bound (above 1 fails), same triangle", "bound"};
+  return {-8.0, -1.0, "barycentric error |b_test - b_ref|, same triangle", "error"};
+}
+
+inline Rgb heatColour(double value, const HeatScale& scale) {
+  if (!(value > 0.0)) return magma(0.0);
+  return magma((std::log10(value) - scale.logMin) / (scale.logMax - scale.logMin));
 }
 
 // The stops above are sRGB-encoded (display) values; EXR holds linear light.
@@ -47,5 +57,6 @@ inline constexpr Rgb kColourBackground{0.15f, 0.15f, 0.15f};     // both empty: 
 inline constexpr Rgb kColourDifferentTriangle{0.0f, 1.0f, 0.0f};  // green
 inline constexpr Rgb kColourOneSideOnly{0.0f, 0.9f, 1.0f};        // cyan
 inline constexpr Rgb kColourNonFinite{1.0f, 0.0f, 1.0f};          // NaN or Inf: magenta
+inline constexpr Rgb kColourUnexplained{1.0f, 0.0f, 0.0f};        // unexplained disagreement
 
 }  // namespace rc

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "compare/colormap.h"
@@ -22,7 +24,29 @@ const char* pixelClassName(PixelClass c) {
   }
 }
 
+const char* explanationName(Explanation e) {
+  switch (e) {
+    case Explanation::kEdgeBand: return "edge_band";
+    case Explanation::kDepthTie: return "depth_tie";
+    default: return "unexplained";
+  }
+}
+
 namespace {
+
+std::string formatPixel(const WorstPixel& p) {
+  return p.x < 0 ? std::string("-") : "(" + std::to_string(p.x) + "," + std::to_string(p.y) + ")";
+}
+
+HeatScale heatScale(HeatmapQuantity q) {
+  return heatScaleByKey(q == HeatmapQuantity::kUlps ? "ulps" : q == HeatmapQuantity::kBoundRatio ? "bound" : "error");
+}
+
+std::string formatRatio(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", value);
+  return buf;
+}
 
 const Channel& require(const Framebuffer& fb, const std::string& path, const std::string& name,
                        ChannelType type, const std::string& otherPath) {
@@ -36,6 +60,26 @@ const Channel& require(const Framebuffer& fb, const std::string& path, const std
                                                    ", expected " + channelTypeName(type));
   }
   return *c;
+}
+
+const float* optionalFloat(const Framebuffer& fb, const char* name) {
+  const Channel* c = fb.find(name);
+  return c && c->type == ChannelType::kFloat ? c->floats.data() : nullptr;
+}
+
+// A header number (a renderer's band or resolution), or NaN when absent or malformed.
+double headerNumber(const Framebuffer& fb, const char* key) {
+  const auto it = fb.attributes.find(key);
+  if (it == fb.attributes.end()) return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  const double value = std::strtod(it->second.c_str(), &end);
+  return end && *end == '\0' && std::isfinite(value) && value >= 0.0 ? value : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Spacing of floats at |x| (the smallest subnormal at 0).
+double floatUlp(double x) {
+  const float f = std::fabs(float(x));
+  return double(std::nextafter(f, std::numeric_limits<float>::infinity())) - double(f);
 }
 
 // A channel family: the planes of one quantity in both images (e.g. attr.uv.x and attr.uv.y).
@@ -144,16 +188,42 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.coverageFraction = double(report.classCounts[int(PixelClass::kTestOnly)] +
                                     report.classCounts[int(PixelClass::kReferenceOnly)]) / covered;
 
-  std::vector<float*> errorPlanes;
+  // Diagnostics: per-pixel bounds and edge distances, and each path's bands (docs/numerics.md).
+  const float* boundTest[2] = {optionalFloat(test, channels::kBaryBound), optionalFloat(test, channels::kDepthBound)};
+  const float* boundRef[2] = {optionalFloat(ref, channels::kBaryBound), optionalFloat(ref, channels::kDepthBound)};
+  const bool bounded = boundTest[0] && boundTest[1] && boundRef[0] && boundRef[1];
+  const float* edgeTest = optionalFloat(test, channels::kEdgeDistance);
+  const float* edgeRef = optionalFloat(ref, channels::kEdgeDistance);
+  const float* tieTest = optionalFloat(test, channels::kDepthTie);
+  const float* tieRef = optionalFloat(ref, channels::kDepthTie);
+  const double bandTest = headerNumber(test, channels::header::kEdgeBand);
+  const double bandRef = headerNumber(ref, channels::header::kEdgeBand);
+  const double resolutionTest = headerNumber(test, channels::header::kDepthResolution);
+  const double resolutionRef = headerNumber(ref, channels::header::kDepthResolution);
+  report.explained = edgeTest && edgeRef && std::isfinite(bandTest) && std::isfinite(bandRef) &&
+                     (tieTest || std::isfinite(resolutionTest)) && (tieRef || std::isfinite(resolutionRef));
+  report.edgeBand = report.explained ? bandTest + bandRef : 0.0;
+
+  std::vector<float*> errorPlanes, ratioPlanes;
+  float* ulpPlane = nullptr;
+  std::uint32_t* explanationPlane = nullptr;
   if (heatmap) {
     *heatmap = Framebuffer(test.width(), test.height());
     for (const Family& f : families) errorPlanes.push_back(heatmap->addFloat("error." + f.name));
+    if (bounded) {
+      for (const Family& f : families) ratioPlanes.push_back(heatmap->addFloat("ratio." + f.name));
+    }
+    ulpPlane = heatmap->addFloat("ulps.bary");
   }
   std::vector<bool> nonFinite(n, false);
   const int width = test.width();
   for (std::size_t fi = 0; fi < families.size(); ++fi) {
     const Family& f = families[fi];
-    StatsAccumulator acc;
+    FamilyReport fr;
+    fr.name = f.name;
+    fr.bounded = bounded;
+    if (f.kind == Family::kAttribute) fr.range = attributeRange(f, classes);
+    StatsAccumulator acc, ulps, ratios;
     for (std::size_t i = 0; i < n; ++i) {
       const PixelClass c = classes[i];
       if (c == PixelClass::kBothEmpty) continue;
@@ -162,29 +232,80 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
       if (!bad && c != PixelClass::kTestOnly) bad |= countNonFinite(f.reference, i, acc);
       if (bad) nonFinite[i] = true;
       if (bad || c != PixelClass::kSameTriangle) continue;
-      double error = -1.0, tv = 0.0, rv = 0.0;
+      double error = -1.0, tv = 0.0, rv = 0.0, ratio = 0.0, ulp = 0.0;
       for (std::size_t k = 0; k < f.test.size(); ++k) {
         const double t = f.test[k][i], r = f.reference[k][i];
         double e = std::fabs(t - r);
         if (f.kind == Family::kDepth && r != 0.0) e /= std::fabs(r);
         if (e > error) error = e, tv = t, rv = r;
+        // Ulps: of 1 for barycentrics, of the value for depth (e is relative), of the range.
+        const double unit = f.kind == Family::kBary    ? floatUlp(1.0) / 2.0
+                            : f.kind == Family::kDepth ? floatUlp(r) / std::max(std::fabs(r), 1e-300)
+                                                       : floatUlp(std::max(fr.range, std::fabs(r)));
+        ulp = std::max(ulp, e / unit);
+        if (bounded) {
+          // The bound of docs/numerics.md: barycentrics and depth add the two paths' bounds;
+          // an attribute adds their barycentric bounds times three times its range (the sum
+          // of |db_i| |a_i - c| over a triangle's vertices) and float rounding of the sums.
+          const double bary = double(boundTest[0][i]) + double(boundRef[0][i]);
+          const double bound = f.kind == Family::kBary    ? bary
+                               : f.kind == Family::kDepth ? double(boundTest[1][i]) + double(boundRef[1][i])
+                                                          : 3.0 * bary * fr.range + 0x1p-21 * (std::fabs(r) + fr.range);
+          const double q = bound > 0.0 ? e / bound : (e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+          ratio = std::max(ratio, q);
+        }
       }
-      acc.addError(error, int(i % width), int(i / width), tv, rv);
-      if (heatmap) errorPlanes[fi][i] = float(error);
+      const int px = int(i % width), py = int(i / width);
+      acc.addError(error, px, py, tv, rv);
+      ulps.addError(ulp, px, py, tv, rv);
+      if (bounded) ratios.addError(ratio, px, py, tv, rv);
+      if (heatmap) {
+        errorPlanes[fi][i] = float(error);
+        if (bounded) ratioPlanes[fi][i] = float(ratio);
+        if (f.kind == Family::kBary) ulpPlane[i] = float(ulp);
+      }
     }
-    FamilyReport fr;
-    fr.name = f.name;
     fr.stats = acc.finish();
+    fr.ulps = ulps.finish();
+    fr.ratio = ratios.finish();
     fr.unit = f.kind == Family::kDepth ? "relative" : "absolute";
-    fr.threshold = f.kind == Family::kBary    ? thresholds.bary
-                   : f.kind == Family::kDepth ? thresholds.depth
-                                              : thresholds.attribute;
-    fr.gated = fr.stats.max;
-    if (f.kind == Family::kAttribute) {
-      fr.range = attributeRange(f, classes);
-      if (fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
-    }
+    fr.threshold = bounded                     ? 1.0
+                   : f.kind == Family::kBary   ? thresholds.bary
+                   : f.kind == Family::kDepth  ? thresholds.depth
+                                               : thresholds.attribute;
+    fr.gated = bounded ? fr.ratio.max : fr.stats.max;
+    if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
     report.families.push_back(fr);
+  }
+
+  // Disagreements, explained where the diagnostics allow (docs/numerics.md).
+  std::vector<Explanation> explanations(n, Explanation::kUnexplained);
+  if (report.explained) {
+    const float* depthTest = test.find(channels::kDepth)->floats.data();
+    const float* depthRef = ref.find(channels::kDepth)->floats.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const PixelClass c = classes[i];
+      if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
+      const bool t = c != PixelClass::kReferenceOnly, r = c != PixelClass::kTestOnly;
+      Explanation e = Explanation::kUnexplained;
+      if ((t && double(edgeTest[i]) <= report.edgeBand) || (r && double(edgeRef[i]) <= report.edgeBand)) {
+        e = Explanation::kEdgeBand;
+      } else if (t && r) {
+        // The winner's own depth-test resolution is known here; the loser's is taken to be at
+        // most as large again (the factor 2), the other path's is added.
+        const double zt = depthTest[i], zr = depthRef[i];
+        const double tieT = tieTest ? double(tieTest[i]) : resolutionTest;
+        const double tieR = tieRef ? double(tieRef[i]) : resolutionRef;
+        if (std::fabs(zt - zr) <= (2.0 * tieT + 2.0 * tieR) * std::max(std::fabs(zt), std::fabs(zr))) {
+          e = Explanation::kDepthTie;
+        }
+      }
+      explanations[i] = e;
+      ++report.explanationCounts[int(e)];
+      if (e == Explanation::kUnexplained && report.firstUnexplained.x < 0) {
+        report.firstUnexplained = {int(i % width), int(i / width), double(testIds[i]), double(refIds[i])};
+      }
+    }
   }
 
   // The gate. Every comparison is written !(value <= limit) so that a NaN fails it.
@@ -193,39 +314,64 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
       report.reasons.push_back(f.name + ": " + std::to_string(f.stats.nanCount) + " NaN and " +
                                std::to_string(f.stats.infCount) + " Inf pixels");
     }
-    if (!(f.gated <= f.threshold)) {
+    if (f.bounded && !(f.gated <= 1.0)) {
+      report.reasons.push_back(f.name + ": error reaches " + formatRatio(f.gated) + "x its bound at " +
+                               formatPixel(f.ratio.worst));
+    } else if (!f.bounded && !(f.gated <= f.threshold)) {
       report.reasons.push_back(f.name + ": max error " + std::to_string(f.gated) +
                                (f.range > 0.0 ? " of range" : "") + " exceeds " +
                                std::to_string(f.threshold));
     }
   }
-  if (!(report.disagreementFraction <= thresholds.disagreement)) {
-    report.reasons.push_back("different triangle at " + std::to_string(report.disagreementFraction) +
-                             " of covered pixels, limit " + std::to_string(thresholds.disagreement));
-  }
-  if (!(report.coverageFraction <= thresholds.coverage)) {
-    report.reasons.push_back("one-side-only coverage at " + std::to_string(report.coverageFraction) +
-                             " of covered pixels, limit " + std::to_string(thresholds.coverage));
+  if (report.explained) {
+    const std::size_t unexplained = report.explanationCounts[int(Explanation::kUnexplained)];
+    if (unexplained > 0) {
+      report.reasons.push_back(std::to_string(unexplained) +
+                               " disagreements neither in the edge band nor a depth tie, first at " +
+                               formatPixel(report.firstUnexplained));
+    }
+  } else {
+    if (!(report.disagreementFraction <= thresholds.disagreement)) {
+      report.reasons.push_back("different triangle at " + std::to_string(report.disagreementFraction) +
+                               " of covered pixels, limit " + std::to_string(thresholds.disagreement));
+    }
+    if (!(report.coverageFraction <= thresholds.coverage)) {
+      report.reasons.push_back("one-side-only coverage at " + std::to_string(report.coverageFraction) +
+                               " of covered pixels, limit " + std::to_string(thresholds.coverage));
+    }
   }
   report.pass = report.reasons.empty();
 
   if (heatmap) {
     std::uint32_t* classPlane = heatmap->addUint("class.id");
+    if (report.explained) explanationPlane = heatmap->addUint("explanation.id");
     float* rgb[3] = {heatmap->addFloat("R"), heatmap->addFloat("G"), heatmap->addFloat("B")};
-    const float* baryError = heatmap->find("error.bary")->floats.data();
+    const HeatmapQuantity quantity = thresholds.heatmap == HeatmapQuantity::kBoundRatio && !bounded
+                                         ? HeatmapQuantity::kError
+                                         : thresholds.heatmap;
+    const HeatScale scale = heatScale(quantity);
+    const float* shown = heatmap->find(quantity == HeatmapQuantity::kError  ? "error.bary"
+                                       : quantity == HeatmapQuantity::kUlps ? "ulps.bary"
+                                                                            : "ratio.bary")
+                             ->floats.data();
     for (std::size_t i = 0; i < n; ++i) {
       classPlane[i] = std::uint32_t(classes[i]);
+      if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
+      const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
       Rgb colour = nonFinite[i]                                   ? kColourNonFinite
                    : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
+                   : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
                    : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
-                   : classes[i] != PixelClass::kSameTriangle      ? kColourOneSideOnly
-                                                                  : heatColour(baryError[i]);
+                   : disagree                                     ? kColourOneSideOnly
+                                                                  : heatColour(shown[i], scale);
       colour = linearFromSrgb(colour);
       for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
     }
     heatmap->attributes["rastercheck.heatmap"] =
-        "RGB: error.bary on a log10 magma scale from 1e-8 to 1e-1; green: different triangle; "
-        "cyan: one side only; magenta: NaN/Inf; grey: empty";
+        std::string("RGB: ") + scale.title + " on a log10 magma scale from 1e" + std::to_string(int(scale.logMin)) +
+        " to 1e" + std::to_string(int(scale.logMax)) +
+        "; green: different triangle; cyan: one side only; red: unexplained disagreement; magenta: NaN/Inf; grey: empty";
+    heatmap->attributes["rastercheck.heatmapQuantity"] = scale.key;
     heatmap->attributes["rastercheck.test"] = testPath;
     heatmap->attributes["rastercheck.reference"] = refPath;
   }

@@ -21,25 +21,47 @@ enum class PixelClass : std::uint32_t {
 inline constexpr int kPixelClassCount = 5;
 const char* pixelClassName(PixelClass c);
 
+// Why the two paths disagree on the triangle at a pixel (docs/numerics.md, "Disagreements").
+enum class Explanation : std::uint32_t {
+  kEdgeBand = 0,     // the centre is within both paths' edge bands of an edge of either triangle
+  kDepthTie = 1,     // both hit, and the two depths are within the paths' depth resolutions
+  kUnexplained = 2,
+};
+inline constexpr int kExplanationCount = 3;
+const char* explanationName(Explanation e);
+
+// What the heatmap's colours show, for the barycentric family.
+enum class HeatmapQuantity {
+  kError,       // |b_test - b_ref|, log scale 1e-8..1e-1
+  kUlps,        // the same in float ulps of 1 (2^-23), log scale 1e-1..1e6
+  kBoundRatio,  // error / (sum of the two paths' bounds), log scale 1e-4..1e2; > 1 fails
+};
+
 // Gate thresholds. Each default sits well above the largest error the default rasterizer
 // (float, perspective, 8 subpixel bits) was measured to make on the built-in scenes; the
 // barycentric one also sits below the smallest error affine interpolation makes there
 // (docs/compare.md has the table and the reasoning).
+// These fixed thresholds apply only to images without the diagnostics of docs/numerics.md
+// (bound.*, edge.dist): both renderers write them, and then the gate is the bound rule.
 struct Thresholds {
   double bary = 2e-4;          // max |b_test - b_ref| over components, same-triangle pixels
   double depth = 2e-5;         // max |d_test - d_ref| / |d_ref|
   double attribute = 1e-4;     // max |a_test - a_ref| / (range of a in the reference)
   double disagreement = 5e-3;  // different-triangle pixels / pixels covered by either image
   double coverage = 1e-3;      // one-side-only pixels / pixels covered by either image
+  HeatmapQuantity heatmap = HeatmapQuantity::kError;
 };
 
 struct FamilyReport {
   std::string name;    // "bary", "depth" or "attr.<name>"
   std::string unit;    // "absolute", "relative" (depth) or "absolute" with `range`
   double range = 0.0;  // attributes: max - min of the reference values over covered pixels
+  bool bounded = false;  // gated per pixel against the two paths' bounds (else `threshold`)
   double threshold = 0.0;
-  double gated = 0.0;  // the value compared with the threshold (max, or max / range)
-  FamilyStats stats;
+  double gated = 0.0;  // the value compared with the limit: max / bound, or max (/ range)
+  FamilyStats stats;   // errors
+  FamilyStats ulps;    // errors in float ulps: of 1 (bary), of the value (depth), of the range
+  FamilyStats ratio;   // errors / bound, when bounded
 };
 
 struct CompareReport {
@@ -49,6 +71,10 @@ struct CompareReport {
   std::size_t coveredEither = 0;
   double disagreementFraction = 0.0;
   double coverageFraction = 0.0;
+  bool explained = false;  // disagreements classified (both images carry edge.dist and bands)
+  std::size_t explanationCounts[kExplanationCount] = {};
+  double edgeBand = 0.0;  // pixels: the sum of the two paths' bands
+  WorstPixel firstUnexplained;
   std::vector<FamilyReport> families;
   Thresholds thresholds;
   bool pass = false;

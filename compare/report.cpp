@@ -46,6 +46,15 @@ nlohmann::json reportToJson(const CompareReport& r) {
   j["pixels"] = pixels;
   j["disagreement_fraction"] = number(r.disagreementFraction);
   j["coverage_fraction"] = number(r.coverageFraction);
+  if (r.explained) {
+    nlohmann::json e;
+    for (int c = 0; c < kExplanationCount; ++c) e[explanationName(Explanation(c))] = r.explanationCounts[c];
+    e["edge_band_pixels"] = number(r.edgeBand);
+    if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
+    j["disagreements"] = e;
+  } else {
+    j["disagreements"] = nullptr;
+  }
   j["thresholds"] = {{"bary", r.thresholds.bary},
                      {"depth", r.thresholds.depth},
                      {"attribute", r.thresholds.attribute},
@@ -60,6 +69,12 @@ nlohmann::json reportToJson(const CompareReport& r) {
                          {"p999", number(s.p999)}, {"threshold", f.threshold},
                          {"gated", number(f.gated)}};
     if (f.unit == "absolute" && f.name != "bary" && f.name != "depth") fj["range"] = number(f.range);
+    fj["bounded"] = f.bounded;
+    fj["ulps"] = {{"max", number(f.ulps.max)}, {"p999", number(f.ulps.p999)}};
+    if (f.bounded) {
+      fj["bound_ratio"] = {{"max", number(f.ratio.max)}, {"p999", number(f.ratio.p999)}};
+      if (f.ratio.worst.x >= 0) fj["bound_ratio"]["worst"] = {{"x", f.ratio.worst.x}, {"y", f.ratio.worst.y}};
+    }
     if (s.worst.x >= 0) {
       fj["worst"] = {{"x", s.worst.x}, {"y", s.worst.y}, {"test", number(s.worst.test)},
                      {"reference", number(s.worst.reference)}};
@@ -81,19 +96,27 @@ std::string reportToTable(const CompareReport& r) {
                 cc[int(PixelClass::kDifferentTriangle)], formatNumber(r.disagreementFraction).c_str(),
                 cc[int(PixelClass::kTestOnly)], cc[int(PixelClass::kReferenceOnly)]);
   out << line;
-  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %9s %5s %9s  %s\n", "family", "max",
-                "mean", "rms", "p50", "p99", "p99.9", "nan+inf", "limit", "worst pixel: test / ref");
+  if (r.explained) {
+    std::snprintf(line, sizeof line,
+                  "disagreements: %zu in the edge band (%s px), %zu depth ties, %zu unexplained\n",
+                  r.explanationCounts[int(Explanation::kEdgeBand)], formatNumber(r.edgeBand).c_str(),
+                  r.explanationCounts[int(Explanation::kDepthTie)],
+                  r.explanationCounts[int(Explanation::kUnexplained)]);
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %5s %9s %9s  %s\n", "family", "max",
+                "mean", "p99.9", "max ulps", "max/bound", "n+i", "limit", "p99.9/bnd", "worst pixel: test / ref");
   out << line;
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;
     const std::string worst = formatWorst(s.worst);
-    std::string limit = formatNumber(f.threshold);
-    if (f.range > 0.0) limit += "*" + formatNumber(f.range);
-    std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %9s %5zu %9s  %s\n", f.name.c_str(),
-                  formatNumber(s.max).c_str(), formatNumber(s.mean).c_str(),
-                  formatNumber(s.rms).c_str(), formatNumber(s.p50).c_str(),
-                  formatNumber(s.p99).c_str(), formatNumber(s.p999).c_str(),
-                  s.nanCount + s.infCount, limit.c_str(), worst.c_str());
+    std::string limit = f.bounded ? "bound" : formatNumber(f.threshold);
+    if (!f.bounded && f.range > 0.0) limit += "*" + formatNumber(f.range);
+    std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %5zu %9s %9s  %s\n", f.name.c_str(),
+                  formatNumber(s.max).c_str(), formatNumber(s.mean).c_str(), formatNumber(s.p999).c_str(),
+                  formatNumber(f.ulps.max).c_str(), f.bounded ? formatNumber(f.ratio.max).c_str() : "-",
+                  s.nanCount + s.infCount, limit.c_str(), f.bounded ? formatNumber(f.ratio.p999).c_str() : "-",
+                  worst.c_str());
     out << line;
   }
   out << "verdict: " << (r.pass ? "PASS" : "FAIL") << "\n";

@@ -14,6 +14,15 @@ inline constexpr const char* kDepth = "depth.z";  // FLOAT: view-space distance 
 inline constexpr const char* kPreview[3] = {"R", "G", "B"};  // FLOAT: for image viewers
 inline constexpr const char* kAttributePrefix = "attr.";  // attr.<name>.<x|y|z|w>
 
+// Diagnostics (docs/numerics.md), FLOAT, written by both renderers for compare's bounds and
+// classification; compare falls back to fixed thresholds for images without them.
+inline constexpr const char* kBaryBound = "bound.bary";    // this path's error bound on bary.*
+inline constexpr const char* kDepthBound = "bound.depth";  // ... on depth.z, relative
+inline constexpr const char* kEdgeDistance = "edge.dist";  // pixels from the centre to the
+                                                           // nearest edge of tri.id on screen
+inline constexpr const char* kDepthTie = "depth.tie";  // rasterizer: relative depth difference
+                                                       // its depth test cannot order here
+
 // "attr.uv.x" for component 0 of attribute "uv".
 inline std::string attributeChannel(const std::string& attribute, int component) {
   static const char* kComponents[4] = {"x", "y", "z", "w"};
@@ -28,6 +37,11 @@ inline constexpr const char* kPrecision = "rastercheck.precision";  // "float" |
 inline constexpr const char* kScene = "rastercheck.scene";
 inline constexpr const char* kCamera = "rastercheck.camera";        // Camera::describe()
 inline constexpr const char* kVersion = "rastercheck.version";
+// Distance in pixels within which this path may decide a pixel centre differently from the
+// exact answer (snapping for the rasterizer, Embree's float test for the reference).
+inline constexpr const char* kEdgeBand = "rastercheck.edgeBand";
+// Relative depth difference within which this path's depth test may order two surfaces wrongly.
+inline constexpr const char* kDepthResolution = "rastercheck.depthResolution";
 }  // namespace header
 
 }  // namespace rc::channels

@@ -10,7 +10,10 @@
 // on the thread count; depth ties go to the lower triangle index.
 #include "rasterizer/rasterizer.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdio>
+#include <type_traits>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +32,9 @@ const char* interpolationName(Interpolation mode) {
 }
 const char* precisionName(Precision precision) {
   return precision == Precision::kFloat ? "float" : "double";
+}
+const char* depthMappingName(DepthMapping mapping) {
+  return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
 }
 
 namespace {
@@ -52,6 +58,7 @@ struct Pipeline {
   std::vector<glm::dvec4> clip;  // per mesh vertex
   std::vector<TriangleSetup<Real>> setups;
   std::vector<glm::mat<3, 3, Real>> clipMaps;
+  SetupContext context{};
 
   Pipeline(const Scene& s, const RasterOptions& o)
       : scene(s), options(o), width(s.camera.width()), height(s.camera.height()) {
@@ -68,6 +75,18 @@ struct Pipeline {
     volume.zNear = s.camera.zNear();
     volume.zFar = s.camera.zFar();
     volume.guard = 2.0 * guardPixels / std::max(width, height);
+    context.width = width;
+    context.height = height;
+    context.subpixelBits = o.subpixelBits;
+    context.unitRoundoff = std::is_same_v<Real, float> ? 0x1p-24 : 0x1p-53;
+    const double n = s.camera.zNear(), f = s.camera.zFar();
+    if (o.depthMapping == DepthMapping::kInverseW) {
+      context.keyA = 0.0, context.keyB = 1.0;
+    } else if (std::isinf(f)) {
+      context.keyA = -1.0, context.keyB = n;
+    } else {
+      context.keyA = -f / (f - n), context.keyB = f * n / (f - n);
+    }
   }
 
   void transform() {
@@ -75,25 +94,35 @@ struct Pipeline {
     const auto& positions = scene.mesh.positions;
     clip.resize(positions.size());
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
+    std::vector<double> largest(blocks, 1.0);  // max |world coordinate| per block, at least 1
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
-        clip[i] = clipFromWorld * glm::dvec4(glm::dvec3(positions[i]), 1.0);
+        const glm::dvec3 p(positions[i]);
+        clip[i] = clipFromWorld * glm::dvec4(p, 1.0);
+        largest[b] = std::max({largest[b], std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
       }
     });
+    // Each clip coordinate is a 4-term dot product in double: error <= 4 u sum_j |M_rj| |p_j|.
+    double rowSum = 0.0;
+    for (int r = 0; r < 4; ++r) {
+      double sum = 0.0;
+      for (int c = 0; c < 4; ++c) sum += std::fabs(clipFromWorld[c][r]);
+      rowSum = std::max(rowSum, sum);
+    }
+    const double maxCoordinate = largest.empty() ? 1.0 : *std::max_element(largest.begin(), largest.end());
+    context.clipError = 4.0 * 0x1p-53 * rowSum * maxCoordinate;
   }
 
   void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3],
-            int clipMap) const {
+            int clipMap, unsigned innerEdges) const {
     glm::dvec2 raster[3];
     for (int i = 0; i < 3; ++i) {
       raster[i].x = scene.camera.rasterXFromNdc(sub[i].x / sub[i].w);
       raster[i].y = scene.camera.rasterYFromNdc(sub[i].y / sub[i].w);
     }
     TriangleSetup<Real> s;
-    if (!setupTriangle(sub, raster, SetupContext{width, height, options.subpixelBits}, s)) {
-      return;
-    }
+    if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, s)) return;
     s.triangle = triangle;
     s.clipMap = clipMap;
     block.setups.push_back(s);
@@ -107,7 +136,7 @@ struct Pipeline {
       if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
       const auto id = static_cast<std::uint32_t>(t);
       if ((c0 | c1 | c2) == 0) {
-        emit(block, id, v, -1);
+        emit(block, id, v, -1, 0u);
         continue;
       }
       const ClipVertex<double> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
@@ -117,7 +146,10 @@ struct Pipeline {
         const glm::dvec4 sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
         block.clipMaps.push_back(
             glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)));
-        emit(block, id, sub, int(block.clipMaps.size()) - 1);
+        // The fan's diagonals poly[0]-poly[k] (opposite vertex 2) and poly[k+1]-poly[0]
+        // (opposite vertex 1) run inside the polygon, except its first and last edges.
+        const unsigned inner = (k > 1 ? 4u : 0u) | (k + 2 < n ? 2u : 0u);
+        emit(block, id, sub, int(block.clipMaps.size()) - 1, inner);
       }
     }
   }
@@ -150,6 +182,10 @@ struct OutputPlanes {
   std::uint32_t* id;
   float* bary[3];
   float* depth;
+  float* baryBound;
+  float* depthBound;
+  float* edgeDistance;
+  float* depthTie;
   struct AttributeOut {
     const float* values;  // per vertex, `components` each
     int components;
@@ -163,6 +199,10 @@ OutputPlanes addOutputChannels(Framebuffer& fb, const Mesh& mesh) {
   planes.id = fb.addUint(channels::kTriangleId, channels::kNoTriangle);
   for (int i = 0; i < 3; ++i) planes.bary[i] = fb.addFloat(channels::kBary[i]);
   planes.depth = fb.addFloat(channels::kDepth);
+  planes.baryBound = fb.addFloat(channels::kBaryBound);
+  planes.depthBound = fb.addFloat(channels::kDepthBound);
+  planes.edgeDistance = fb.addFloat(channels::kEdgeDistance);
+  planes.depthTie = fb.addFloat(channels::kDepthTie);
   for (const Attribute& a : mesh.attributes) {
     OutputPlanes::AttributeOut out{a.values.data(), a.components, {}};
     for (int c = 0; c < a.components; ++c) {
@@ -192,7 +232,7 @@ void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const st
     makeEdgeFunctions(xf, yf, edges);
     forEachCoveredPixel(edges, p.options.subpixelBits, std::max(x0, s.minX), std::max(y0, s.minY),
                         std::min(x1, s.maxX), std::min(y1, s.maxY), [&](int x, int y) {
-                          const Real z = inverseDepthAt(s, centerX(s, x), centerY(s, y));
+                          const Real z = depthKeyAt(s, offsetX(s, x), offsetY(s, y));
                           const int local = (y - y0) * kTileSize + (x - x0);
                           if (z > nearest[local]) {  // strict: the earlier triangle keeps a tie
                             nearest[local] = z;
@@ -208,9 +248,9 @@ void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const st
       const std::uint32_t index = winner[(y - y0) * kTileSize + (x - x0)];
       if (index == kEmpty) continue;
       const TriangleSetup<Real>& s = p.setups[index];
-      const Real px = centerX(s, x), py = centerY(s, y);
-      const Real l[3] = {edgeValue(s, 0, px, py) * s.invArea, edgeValue(s, 1, px, py) * s.invArea,
-                         edgeValue(s, 2, px, py) * s.invArea};
+      const Real px = offsetX(s, x), py = offsetY(s, y);
+      Real l[3];
+      screenBarycentrics(s, px, py, l);
       const Recovered<Real> r = perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
       glm::vec<3, Real> b(r.b[0], r.b[1], r.b[2]);
       if (s.clipMap >= 0) b = p.clipMaps[s.clipMap] * b;  // sub-triangle -> source triangle
@@ -218,6 +258,10 @@ void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const st
       out.id[pixel] = s.triangle;
       for (int i = 0; i < 3; ++i) out.bary[i][pixel] = float(b[i]);
       out.depth[pixel] = float(r.depth);
+      out.baryBound[pixel] = s.baryBound;
+      out.depthBound[pixel] = s.depthBound;
+      out.edgeDistance[pixel] = edgeDistanceAt(s, l);
+      out.depthTie[pixel] = depthTieAt(s, px, py, p.context.unitRoundoff, p.context.keyB, double(r.depth));
       const glm::uvec3& tri = triangles[s.triangle];
       for (const OutputPlanes::AttributeOut& a : out.attributes) {
         const float* v0 = a.values + std::size_t(tri.x) * a.components;
@@ -277,6 +321,12 @@ Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {
   fb.attributes[channels::header::kMode] = interpolationName(options.interpolation);
   fb.attributes[channels::header::kPrecision] = precisionName(options.precision);
   fb.attributes["rastercheck.subpixelBits"] = std::to_string(options.subpixelBits);
+  fb.attributes["rastercheck.depthMapping"] = depthMappingName(options.depthMapping);
+  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
+  // raster positions themselves are far more accurate than that.
+  char band[32];
+  std::snprintf(band, sizeof band, "%.6g", 0.7072 * std::ldexp(1.0, -options.subpixelBits));
+  fb.attributes[channels::header::kEdgeBand] = band;
   fb.attributes[channels::header::kScene] = scene.name;
   fb.attributes[channels::header::kCamera] = scene.camera.describe();
   return fb;

@@ -2,12 +2,17 @@
 //
 // Precision per stage (docs/rasterizer.md): everything per triangle (transform, clipping,
 // projection, snapping and these coefficients) is computed in double; only the per-pixel
-// arithmetic runs in Real (float or double). Positions are stored relative to an integer
-// pixel anchor near vertex 0, so a pixel's offset (x - anchorX) + 0.5 is exact and the float
-// path loses only relative rounding (about u K), not ulp(|raster position|) / triangle height.
+// arithmetic runs in Real (float or double). Every per-pixel quantity is a plane, evaluated
+// as value-at-anchor + gradient . offset, where the anchor is the pixel at the centre of the
+// triangle's bounding box clipped to the image: offsets are small exact integers, so the
+// float path loses only u (|value at anchor| + |gradient| |offset|), not ulp(|raster
+// position|) of vertices that may lie 10^6 pixels away (docs/numerics.md).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <glm/glm.hpp>
 
 #include "rasterizer/coverage.h"
@@ -21,42 +26,69 @@ struct TriangleSetup {
   std::int32_t xFixed[3];    // snapped raster positions (subpixelBits fraction bits); |.| < 2^29
   std::int32_t yFixed[3];
   int minX, minY, maxX, maxY;  // pixels whose centres may be covered, inclusive, in the viewport
-  int anchorX, anchorY;      // integer pixel near vertex 0
-  Real x[3], y[3];           // unsnapped raster positions minus the anchor
-  Real invArea;              // 1 / signed double area of (x, y)
+  int anchorX, anchorY;      // the pixel whose centre the planes are anchored at
+  Real l0[3], lx[3], ly[3];  // screen-space barycentric planes: l_i = l0 + lx dx + ly dy
   Real w[3], invW[3];        // clip w (= depth) of the vertices and its reciprocal
-  Real zx, zy;               // gradient of 1/w over raster space (depth test)
+  Real key0, keyX, keyY;     // depth-test key plane (larger is nearer)
+  Real edgeHeight[3];        // 1 / |grad l_i|: pixels from l_i = 0 to l_i = 1; -1 for an edge
+                             // inside a clipped polygon, which is no edge of the source
+  float baryBound;           // bound on the barycentrics' error (docs/numerics.md)
+  float depthBound;          // bound on depth.z's relative error
 };
 
 struct SetupContext {
   int width, height, subpixelBits;
+  double unitRoundoff;  // of the per-pixel arithmetic: 2^-24 (float) or 2^-53 (double)
+  double clipError;     // bound on the absolute error of the double world-to-clip transform
+  double keyA, keyB;    // depth key = keyA + keyB / w
 };
 
 // Snaps and sets up one sub-triangle from its clip-space vertices and raster positions.
+// `innerEdges` has bit i set when the edge opposite vertex i runs inside the source triangle
+// (a diagonal of a clipped polygon's fan); `clipped` when the sub-triangle came from clipping.
 // Returns false when it covers no pixel centre (zero snapped area, or no centre of the
 // viewport inside its bounding box).
 template <typename Real>
-bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx,
-                   TriangleSetup<Real>& s);
+bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges,
+                   bool clipped, const SetupContext& ctx, TriangleSetup<Real>& s);
 
-// The pixel centre of (x, y) relative to the anchor: exact in float while |offset| < 2^23.
+// Offsets of pixel (x, y) from the anchor: small integers, exact in float.
 template <typename Real>
-inline Real centerX(const TriangleSetup<Real>& s, int x) { return Real(x - s.anchorX) + Real(0.5); }
+inline Real offsetX(const TriangleSetup<Real>& s, int x) { return Real(x - s.anchorX); }
 template <typename Real>
-inline Real centerY(const TriangleSetup<Real>& s, int y) { return Real(y - s.anchorY) + Real(0.5); }
+inline Real offsetY(const TriangleSetup<Real>& s, int y) { return Real(y - s.anchorY); }
 
-// Signed edge function of the edge opposite vertex i at anchored p, from unsnapped positions:
-// l_i = edgeValue(i) * invArea are the screen-space barycentrics.
+// Screen-space barycentrics at offset (dx, dy).
 template <typename Real>
-inline Real edgeValue(const TriangleSetup<Real>& s, int i, Real px, Real py) {
-  const int from = (i + 1) % 3, to = (i + 2) % 3;
-  return (s.x[to] - s.x[from]) * (py - s.y[from]) - (s.y[to] - s.y[from]) * (px - s.x[from]);
+inline void screenBarycentrics(const TriangleSetup<Real>& s, Real dx, Real dy, Real l[3]) {
+  for (int i = 0; i < 3; ++i) l[i] = s.l0[i] + s.lx[i] * dx + s.ly[i] * dy;
 }
 
-// 1/w at anchored p: the depth-test key (larger is nearer), linear in raster space.
+// Distance in pixels from the centre to the nearest source edge, from its screen barycentrics.
 template <typename Real>
-inline Real inverseDepthAt(const TriangleSetup<Real>& s, Real px, Real py) {
-  return s.invW[0] + s.zx * (px - s.x[0]) + s.zy * (py - s.y[0]);
+inline float edgeDistanceAt(const TriangleSetup<Real>& s, const Real l[3]) {
+  Real nearest = std::numeric_limits<Real>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    if (s.edgeHeight[i] >= Real(0)) nearest = std::min(nearest, std::fabs(l[i]) * s.edgeHeight[i]);
+  }
+  return float(nearest);
+}
+
+// The depth-test key at offset (dx, dy) (larger is nearer).
+template <typename Real>
+inline Real depthKeyAt(const TriangleSetup<Real>& s, Real dx, Real dy) {
+  return s.key0 + s.keyX * dx + s.keyY * dy;
+}
+
+// Bound on the error of depthKeyAt (a rounding of each coefficient, of each product and of
+// each sum), turned into the relative depth difference the test cannot resolve at depth w:
+// |d key / d w| w = keyB / w.
+template <typename Real>
+inline float depthTieAt(const TriangleSetup<Real>& s, Real dx, Real dy, double unitRoundoff, double keyB,
+                        double w) {
+  const double terms = std::fabs(double(s.key0)) + std::fabs(double(s.keyX) * double(dx)) +
+                       std::fabs(double(s.keyY) * double(dy));
+  return float(5.0 * unitRoundoff * terms * w / keyB);
 }
 
 }  // namespace rc

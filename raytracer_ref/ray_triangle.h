@@ -1,7 +1,9 @@
-// Double-precision barycentrics and distance of a ray against a triangle, and the one place
-// where Embree's (u, v) become barycentrics.
+// Double-precision barycentrics and distance of a ray against a triangle, with their error
+// bounds (docs/numerics.md), and the one place where Embree's (u, v) become barycentrics.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <glm/glm.hpp>
 
 namespace rc {
@@ -12,26 +14,38 @@ inline glm::dvec3 baryFromEmbreeUv(float u, float v) {
 }
 
 struct DoubleHit {
-  bool valid;    // false when the ray is parallel to the triangle's plane (no unique point)
-  glm::dvec3 b;  // barycentrics of the ray's point on the plane; sum to 1
-  double t;      // ray parameter of that point: o + t d
+  bool valid;         // false when the ray is parallel to the triangle's plane
+  glm::dvec3 b;       // barycentrics of the ray's point on the plane; b0 = 1 - b1 - b2
+  double t;           // ray parameter of that point: o + t d
+  double baryBound;   // bound on |b - exact| from the double arithmetic below
+  double depthBound;  // bound on |t - exact| / |t|
 };
 
-// Signed volumes (Pluecker form, symmetric in the vertices): V_i = d . ((v_j - o) x (v_k - o))
-// for (i, j, k) cyclic, b_i = V_i / sum V. Translating to the ray origin first keeps the
-// arithmetic relative to the eye. t comes from the plane: n . (v0 - o) / n . d.
-inline DoubleHit intersectRayTriangle(const glm::dvec3& o, const glm::dvec3& d,
-                                      const glm::dvec3& v0, const glm::dvec3& v1,
-                                      const glm::dvec3& v2) {
-  const glm::dvec3 a = v0 - o, b = v1 - o, c = v2 - o;
-  const double V0 = glm::dot(d, glm::cross(b, c));
-  const double V1 = glm::dot(d, glm::cross(c, a));
-  const double V2 = glm::dot(d, glm::cross(a, b));
-  const double sum = V0 + V1 + V2;
-  const glm::dvec3 n = glm::cross(v1 - v0, v2 - v0);
-  const double nd = glm::dot(n, d);
-  if (!(sum != 0.0) || !(nd != 0.0)) return {false, glm::dvec3(0.0), 0.0};
-  return {true, glm::dvec3(V0, V1, V2) / sum, glm::dot(n, a) / nd};
+// Moeller-Trumbore in double, relative to vertex 0: e1 = v1 - v0, e2 = v2 - v0, P = d x e2,
+// det = e1 . P, T = o - v0, b1 = T . P / det, Q = T x e1, b2 = d . Q / det, t = e2 . Q / det.
+// Each dot product of computed vectors errs by at most about 4 u times the product of their
+// lengths, so with L the longest edge: |db| <= 16 u |d| L (|T| + 3 L) / |det|, a bound that
+// grows with the triangle's conditioning L^2 / 2A, with 1 / |cos(ray, normal)| and with the
+// distance |T| relative to L, exactly as the derivation in docs/numerics.md.
+inline DoubleHit intersectRayTriangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& v0,
+                                      const glm::dvec3& v1, const glm::dvec3& v2) {
+  constexpr double u = 0x1p-53;
+  const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0;
+  const glm::dvec3 P = glm::cross(d, e2);
+  const double det = glm::dot(e1, P);
+  if (!(det != 0.0) || !std::isfinite(det)) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
+  const glm::dvec3 T = o - v0;
+  const double inv = 1.0 / det;
+  const double b1 = glm::dot(T, P) * inv;
+  const glm::dvec3 Q = glm::cross(T, e1);
+  const double b2 = glm::dot(d, Q) * inv;
+  const double tNumerator = glm::dot(e2, Q);
+  const double L = std::max({glm::length(e1), glm::length(e2), glm::length(e2 - e1)});
+  const double lengthD = glm::length(d), lengthT = glm::length(T);
+  const double baryBound = 16.0 * u * lengthD * L * (lengthT + 3.0 * L) / std::fabs(det);
+  const double depthBound = 8.0 * u * (glm::length(e2) * lengthT * glm::length(e1) / std::fabs(tNumerator) +
+                                       glm::length(e1) * lengthD * glm::length(e2) / std::fabs(det));
+  return {true, {1.0 - b1 - b2, b1, b2}, tNumerator * inv, baryBound, depthBound};
 }
 
 }  // namespace rc

@@ -1,9 +1,10 @@
 // The Embree reference renderer.
 //
 // Precision per stage: Embree gets camera-relative float geometry (vertex - eye, computed in
-// double, rounded once) and rays from the origin, so its hit decision does not degrade with
-// the world offset. Embree only chooses the triangle; everything written is recomputed in
-// double from the mesh's own float vertices and the camera's double ray.
+// double, rounded once), with triangles too long for their distance split (subdivide.h), and
+// rays from the origin, so its hit decision does not degrade with the world offset. Embree only
+// chooses the triangle; everything written is recomputed in double from the mesh's own float
+// vertices and the camera's double ray, with its error bound (docs/numerics.md).
 #include "raytracer_ref/reference.h"
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "core/preview.h"
 #include "raytracer_ref/embree_device.h"
 #include "raytracer_ref/ray_triangle.h"
+#include "raytracer_ref/subdivide.h"
 
 namespace rc {
 namespace {
@@ -33,36 +35,49 @@ bool cpuSupports(const std::string& isa) {
   throw usageError("--embree-isa must be one of sse2, sse4.2, avx, avx2, avx512; got '" + isa + "'");
 }
 
-void buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh,
-                   const glm::dvec3& eye) {
+// Returns the mesh triangle of each Embree triangle (empty: the same index).
+std::vector<std::uint32_t> buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh,
+                                         const Camera& camera) {
+  EmbreeTriangles triangles = embreeTriangles(mesh, camera);
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   device.check("rtcNewGeometry");
+  const std::size_t vertexCount = triangles.vertices.size() / 3, triangleCount = triangles.indices.size() / 3;
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertexCount()));
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangleCount()));
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangleCount));
   device.check("rtcSetNewGeometryBuffer");
-  for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
-    const glm::dvec3 relative = glm::dvec3(mesh.positions[i]) - eye;
-    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = float(relative[k]);
-  }
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    for (int k = 0; k < 3; ++k) indices[3 * t + k] = mesh.triangles[t][k];
-  }
+  std::copy(triangles.vertices.begin(), triangles.vertices.end(), vertices);
+  std::copy(triangles.indices.begin(), triangles.indices.end(), indices);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene.get(), geometry);
   rtcReleaseGeometry(geometry);
   device.check("building the geometry");
   rtcCommitScene(scene.get());
   device.check("rtcCommitScene");
+  return std::move(triangles.source);
 }
 
 struct Planes {
   std::uint32_t* id;
   float* bary[3];
   float* depth;
+  float* baryBound;
+  float* depthBound;
+  float* edgeDistance;
   std::vector<std::pair<const Attribute*, std::array<float*, 4>>> attributes;
 };
+
+// Embree's float hit test, on triangles no longer than kMaxLengthOverDistance times their
+// distance, errs in angle by at most about 8 (1 + kMaxLengthOverDistance) u_float (the factor
+// 8 covers the few roundings of its edge tests); in pixels, that angle is scaled by the image
+// plane's pixels per unit, and by up to 1 + tan^2 at the image's corners.
+double referenceEdgeBand(const Camera& camera) {
+  const double tanY = std::tan(camera.spec().fovYDegrees * (M_PI / 360.0));
+  const double tanX = tanY * camera.width() / camera.height();
+  const double pixelsPerUnit = camera.height() / (2.0 * tanY);
+  return 8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24 * pixelsPerUnit * (1.0 + tanX * tanX + tanY * tanY);
+}
 
 }  // namespace
 
@@ -72,12 +87,13 @@ struct ReferenceTracer::Impl {
   int threads;
   EmbreeDevice device;
   EmbreeScene embreeScene;
+  std::vector<std::uint32_t> source;  // Embree primID -> mesh triangle; empty = identity
 
   Impl(const Scene& s, const ReferenceOptions& o)
       : scene(s), options(o), threads(resolveThreadCount(o.threads)),
         device("isa=" + o.isa + ",threads=" + std::to_string(threads) + ",verbose=0"),
         embreeScene(device, RTC_SCENE_FLAG_ROBUST) {
-    buildGeometry(device, embreeScene, scene.mesh, scene.camera.spec().eye);
+    source = buildGeometry(device, embreeScene, scene.mesh, scene.camera);
   }
 };
 
@@ -111,9 +127,12 @@ Framebuffer ReferenceTracer::trace() const {
   const Camera& camera = scene.camera;
 
   Framebuffer fb(camera.width(), camera.height());
-  Planes planes{fb.addUint(channels::kTriangleId, channels::kNoTriangle), {}, nullptr, {}};
+  Planes planes{fb.addUint(channels::kTriangleId, channels::kNoTriangle), {}, nullptr, nullptr, nullptr, nullptr, {}};
   for (int i = 0; i < 3; ++i) planes.bary[i] = fb.addFloat(channels::kBary[i]);
   planes.depth = fb.addFloat(channels::kDepth);
+  planes.baryBound = fb.addFloat(channels::kBaryBound);
+  planes.depthBound = fb.addFloat(channels::kDepthBound);
+  planes.edgeDistance = fb.addFloat(channels::kEdgeDistance);
   for (const Attribute& a : scene.mesh.attributes) {
     std::array<float*, 4> out{};
     for (int c = 0; c < a.components; ++c) out[c] = fb.addFloat(channels::attributeChannel(a.name, c));
@@ -125,18 +144,39 @@ Framebuffer ReferenceTracer::trace() const {
   const int tasks = (height + kRowsPerTask - 1) / kRowsPerTask;
   std::vector<double> embreeDiff(tasks, 0.0);  // max |Embree bary - double bary| per task
   // Everything written for one hit is recomputed in double from the mesh and the camera's ray.
+  const std::vector<std::uint32_t>& source = impl_->source;
+  const double pixelsPerUnit = height / (2.0 * std::tan(camera.spec().fovYDegrees * (M_PI / 360.0)));
   const auto shade = [&](int x, int y, const CameraRay& ray, unsigned primID, float u, float v, float tfar,
                          double& embreeDiffMax) {
-    const glm::uvec3 tri = mesh.triangles[primID];
-    const glm::dvec3 embreeBary = baryFromEmbreeUv(u, v);
-    DoubleHit hit = intersectRayTriangle(ray.origin, ray.direction, glm::dvec3(mesh.positions[tri.x]),
-                                         glm::dvec3(mesh.positions[tri.y]), glm::dvec3(mesh.positions[tri.z]));
-    if (!hit.valid) hit = {true, embreeBary, double(tfar)};  // parallel to the plane: keep Embree's
-    embreeDiffMax = std::max(embreeDiffMax, glm::length(hit.b - embreeBary));
+    const std::uint32_t triangle = source.empty() ? primID : source[primID];
+    const glm::uvec3 tri = mesh.triangles[triangle];
+    const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[tri.x]), glm::dvec3(mesh.positions[tri.y]),
+                             glm::dvec3(mesh.positions[tri.z])};
+    DoubleHit hit = intersectRayTriangle(ray.origin, ray.direction, p[0], p[1], p[2]);
+    if (!hit.valid) {  // parallel to the plane: no unique point; keep Embree's, unbounded
+      hit = {true, baryFromEmbreeUv(u, v), double(tfar), std::numeric_limits<double>::infinity(),
+             std::numeric_limits<double>::infinity()};
+    } else if (source.empty()) {
+      embreeDiffMax = std::max(embreeDiffMax, glm::length(hit.b - baryFromEmbreeUv(u, v)));
+    }
     const std::size_t pixel = std::size_t(y) * width + x;
-    planes.id[pixel] = primID;
+    planes.id[pixel] = triangle;
     for (int i = 0; i < 3; ++i) planes.bary[i][pixel] = float(hit.b[i]);
     planes.depth[pixel] = float(hit.t * glm::dot(ray.direction, camera.forward()));
+    // Float output rounds each value once more: half an ulp of numbers up to 1 (b can leave
+    // [0, 1] only within Embree's band), a relative 2^-24 for depth.
+    planes.baryBound[pixel] = float(hit.baryBound + 0x1p-24);
+    planes.depthBound[pixel] = float(hit.depthBound + 0x1p-24);
+    // Screen distance to the edge opposite vertex i: the pixel's direction d against the plane
+    // through the eye and that edge, measured in the image plane d . forward = 1.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+      const glm::dvec3 n = glm::cross(p[(i + 1) % 3] - ray.origin, p[(i + 2) % 3] - ray.origin);
+      const glm::dvec3 inPlane = n - glm::dot(n, camera.forward()) * camera.forward();
+      const double length = glm::length(inPlane);
+      if (length > 0.0) nearest = std::min(nearest, std::fabs(glm::dot(ray.direction, n)) / length * pixelsPerUnit);
+    }
+    planes.edgeDistance[pixel] = float(nearest);
     for (const auto& [attribute, out] : planes.attributes) {
       const int n = attribute->components;
       const float* values = attribute->values.data();
@@ -190,6 +230,13 @@ Framebuffer ReferenceTracer::trace() const {
   fb.attributes[channels::header::kMode] = "exact";
   fb.attributes[channels::header::kPrecision] = "double";
   fb.attributes["rastercheck.embreeIsa"] = options.isa;
+  char band[32];
+  std::snprintf(band, sizeof band, "%.6g", referenceEdgeBand(camera));
+  fb.attributes[channels::header::kEdgeBand] = band;
+  // Embree orders hits by its float t, within the same angular error (8 (1 + k) u, relative).
+  std::snprintf(band, sizeof band, "%.6g", 8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24);
+  fb.attributes[channels::header::kDepthResolution] = band;
+  fb.attributes["rastercheck.embreeTriangles"] = std::to_string(source.empty() ? mesh.triangleCount() : source.size());
   char diff[32];
   std::snprintf(diff, sizeof diff, "%.3g", *std::max_element(embreeDiff.begin(), embreeDiff.end()));
   fb.attributes["rastercheck.embreeBaryMaxDiff"] = diff;

@@ -32,10 +32,14 @@ TEST(RayTriangle, BarycentricsRotateWithTheVertexOrder) {
   const DoubleHit a = intersectRayTriangle(o, d, v0, v1, v2);
   const DoubleHit b = intersectRayTriangle(o, d, v1, v2, v0);
   ASSERT_TRUE(a.valid && b.valid);
-  EXPECT_DOUBLE_EQ(a.b[0], b.b[2]);
-  EXPECT_DOUBLE_EQ(a.b[1], b.b[0]);
-  EXPECT_DOUBLE_EQ(a.b[2], b.b[1]);
-  EXPECT_NEAR(a.t, b.t, 1e-15);
+  // Moeller-Trumbore is not symmetric in the vertices: the two agree within their bounds.
+  const double bound = a.baryBound + b.baryBound;
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LT(bound, 1e-13);
+  EXPECT_NEAR(a.b[0], b.b[2], bound);
+  EXPECT_NEAR(a.b[1], b.b[0], bound);
+  EXPECT_NEAR(a.b[2], b.b[1], bound);
+  EXPECT_NEAR(a.t, b.t, (a.depthBound + b.depthBound) * a.t);
   EXPECT_NEAR(a.b[0] + a.b[1] + a.b[2], 1.0, 1e-15);
 }
 

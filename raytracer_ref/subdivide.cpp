@@ -1,0 +1,119 @@
+// Splitting triangles that Embree's float arithmetic cannot place accurately (subdivide.h).
+#include "raytracer_ref/subdivide.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rc {
+
+double distanceToTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  // Closest point on a triangle to p = 0, by Voronoi regions (Ericson, Real-Time Collision
+  // Detection, 5.1.5).
+  const glm::dvec3 ab = b - a, ac = c - a, ap = -a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return glm::length(a);
+  const glm::dvec3 bp = -b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return glm::length(b);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return glm::length(a + ab * (d1 / (d1 - d3)));
+  const glm::dvec3 cp = -c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return glm::length(c);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return glm::length(a + ac * (d2 / (d2 - d6)));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    return glm::length(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+  }
+  const double sum = va + vb + vc;
+  if (!(sum != 0.0)) return std::min({glm::length(a), glm::length(b), glm::length(c)});
+  return glm::length(a + ab * (vb / sum) + ac * (vc / sum));
+}
+
+namespace {
+
+constexpr int kMaxDepth = 64;
+
+struct Splitter {
+  glm::dvec3 forward, right, up;
+  double zNear, tanX, tanY;
+  EmbreeTriangles& out;
+
+  // True when every vertex is outside the same plane of the widened frustum or behind near.
+  bool outside(const glm::dvec3 p[3]) const {
+    unsigned all = 0x1F;
+    for (int i = 0; i < 3; ++i) {
+      const double depth = glm::dot(p[i], forward), x = glm::dot(p[i], right), y = glm::dot(p[i], up);
+      unsigned code = 0;
+      if (depth < zNear) code |= 1;
+      if (x > 2.0 * tanX * depth) code |= 2;
+      if (-x > 2.0 * tanX * depth) code |= 4;
+      if (y > 2.0 * tanY * depth) code |= 8;
+      if (-y > 2.0 * tanY * depth) code |= 16;
+      all &= code;
+    }
+    return all != 0;
+  }
+
+  void emit(const glm::dvec3 p[3], std::uint32_t source) {
+    const auto base = unsigned(out.vertices.size() / 3);
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) out.vertices.push_back(float(p[i][k]));
+      out.indices.push_back(base + unsigned(i));
+    }
+    out.source.push_back(source);
+  }
+
+  void split(const glm::dvec3 p[3], std::uint32_t source, int depth) {
+    if (outside(p)) return;
+    const double e[3] = {glm::length(p[1] - p[2]), glm::length(p[2] - p[0]), glm::length(p[0] - p[1])};
+    const int longest = int(std::max_element(e, e + 3) - e);  // edge opposite vertex `longest`
+    if (depth >= kMaxDepth || e[longest] <= kMaxLengthOverDistance * distanceToTriangle(p[0], p[1], p[2])) {
+      emit(p, source);
+      return;
+    }
+    const int i = longest, j = (i + 1) % 3, k = (i + 2) % 3;
+    const glm::dvec3 mid = 0.5 * (p[j] + p[k]);
+    glm::dvec3 first[3], second[3];  // both keep the winding of p
+    first[i] = p[i], first[j] = p[j], first[k] = mid;
+    second[i] = p[i], second[j] = mid, second[k] = p[k];
+    split(first, source, depth + 1);
+    split(second, source, depth + 1);
+  }
+};
+
+}  // namespace
+
+EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera) {
+  const glm::dvec3 eye = camera.spec().eye;
+  EmbreeTriangles out;
+  out.vertices.reserve(3 * mesh.vertexCount());
+  for (const glm::vec3& p : mesh.positions) {
+    const glm::dvec3 relative = glm::dvec3(p) - eye;  // rounded once, below
+    for (int k = 0; k < 3; ++k) out.vertices.push_back(float(relative[k]));
+  }
+  const double tanY = std::tan(camera.spec().fovYDegrees * (M_PI / 360.0));
+  Splitter splitter{camera.forward(), camera.right(), camera.up(), camera.zNear(),
+                    tanY * double(camera.width()) / double(camera.height()), tanY, out};
+  out.indices.reserve(3 * mesh.triangleCount());
+  out.source.reserve(mesh.triangleCount());
+  bool split = false;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const glm::uvec3 tri = mesh.triangles[t];
+    const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[tri.x]) - eye, glm::dvec3(mesh.positions[tri.y]) - eye,
+                             glm::dvec3(mesh.positions[tri.z]) - eye};
+    const double longest = std::max({glm::length(p[1] - p[2]), glm::length(p[2] - p[0]), glm::length(p[0] - p[1])});
+    if (longest <= kMaxLengthOverDistance * distanceToTriangle(p[0], p[1], p[2])) {
+      for (int k = 0; k < 3; ++k) out.indices.push_back(tri[k]);
+      out.source.push_back(std::uint32_t(t));
+      continue;
+    }
+    split = true;
+    splitter.split(p, std::uint32_t(t), 0);
+  }
+  if (!split) out.source.clear();  // identity
+  return out;
+}
+
+}  // namespace rc
