@@ -103,15 +103,16 @@ struct Pipeline {
         largest[b] = std::max({largest[b], std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
       }
     });
-    // Each clip coordinate is a 4-term dot product in double: error <= 4 u sum_j |M_rj| |p_j|.
-    double rowSum = 0.0;
-    for (int r = 0; r < 4; ++r) {
-      double sum = 0.0;
-      for (int c = 0; c < 4; ++c) sum += std::fabs(clipFromWorld[c][r]);
-      rowSum = std::max(rowSum, sum);
-    }
+    // Each clip coordinate is a 4-term dot product in double (p_3 = 1):
+    // error <= 4 u sum_j |M_rj| |p_j| <= 4 u (max|p| sum_{j<3} |M_rj| + |M_r3|).
     const double maxCoordinate = largest.empty() ? 1.0 : *std::max_element(largest.begin(), largest.end());
-    context.clipError = 4.0 * 0x1p-53 * rowSum * maxCoordinate;
+    double bound = 0.0;
+    for (int r = 0; r < 4; ++r) {
+      double linear = 0.0;
+      for (int c = 0; c < 3; ++c) linear += std::fabs(clipFromWorld[c][r]);
+      bound = std::max(bound, linear * maxCoordinate + std::fabs(clipFromWorld[3][r]));
+    }
+    context.clipError = 4.0 * 0x1p-53 * bound;
   }
 
   void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3],
@@ -308,12 +309,40 @@ Framebuffer rasterizeAs(const Scene& scene, const RasterOptions& options) {
   return fb;
 }
 
-}  // namespace
-
-Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {
+void checkSubpixelBits(const RasterOptions& options) {
   if (options.subpixelBits < 1 || options.subpixelBits > 16) {
     throw usageError("--subpixel-bits must be 1..16, got " + std::to_string(options.subpixelBits));
   }
+}
+
+template <typename Real>
+std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene& scene, const RasterOptions& options) {
+  Pipeline<Real> p(scene, options);
+  p.transform();
+  p.setupAll();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const TriangleSetup<Real>& s : p.setups) {
+    EdgeFunctions edges{};
+    const std::int64_t xf[3] = {s.xFixed[0], s.xFixed[1], s.xFixed[2]};
+    const std::int64_t yf[3] = {s.yFixed[0], s.yFixed[1], s.yFixed[2]};
+    makeEdgeFunctions(xf, yf, edges);
+    forEachCoveredPixel(edges, options.subpixelBits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y) {
+      pairs.emplace_back(s.triangle, std::uint32_t(y) * std::uint32_t(p.width) + std::uint32_t(x));
+    });
+  }
+  return pairs;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixels(const Scene& scene, const RasterOptions& options) {
+  checkSubpixelBits(options);
+  return options.precision == Precision::kFloat ? coveredPixelsAs<float>(scene, options)
+                                                : coveredPixelsAs<double>(scene, options);
+}
+
+Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {
+  checkSubpixelBits(options);
   Framebuffer fb = options.precision == Precision::kFloat ? rasterizeAs<float>(scene, options)
                                                           : rasterizeAs<double>(scene, options);
   addPreview(fb);

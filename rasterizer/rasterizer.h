@@ -2,6 +2,10 @@
 // Same entry shape as the reference: (const Scene&, const Options&) -> Framebuffer.
 #pragma once
 
+#include <cstdint>
+#include <utility>
+#include <vector>
+
 #include "core/framebuffer.h"
 #include "scenes/scene.h"
 
@@ -35,5 +39,11 @@ struct RasterOptions {
 // diagnostics bound.bary, bound.depth, edge.dist and depth.tie (docs/numerics.md), plus an
 // RGB preview. Throws usageError when subpixelBits does not fit the image size.
 Framebuffer rasterize(const Scene& scene, const RasterOptions& options);
+
+// Every (source triangle, pixel index) pair the coverage stage produces, before the depth
+// test, in set-up order: the same transform, clipping, snapping and fill rule as rasterize.
+// For tests against an exact oracle (tests/oracle/).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixels(const Scene& scene,
+                                                                   const RasterOptions& options);
 
 }  // namespace rc

@@ -105,10 +105,11 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
   // Perspective division: |db_i| <= rho (1 + 3 b_i) max|dl| <= 4 rho epsL (l within [0, 1]
   // up to the snapping band), plus about 6 u from forming q, its sum and the quotient; a
   // clipped sub-triangle's 3x3 map (columns summing to 1, entries in [0, 1]) at most triples
-  // that and adds 4 u; the float output adds half an ulp of 1.
+  // that and adds 4 u; the float output adds half an ulp of values below 2 (a barycentric
+  // leaves [0, 1] only by the snapping band), 2^-23 relative for depth.
   const double perspective = 4.0 * rho * epsL * std::max(1.0, lMax) + 6.0 * u;
-  s.baryBound = float((clipped ? 3.0 * perspective + 4.0 * u : perspective) + 0x1p-24);
-  s.depthBound = float(6.0 * rho * epsL * std::max(1.0, lMax) + 6.0 * u + 0x1p-24);
+  s.baryBound = float((clipped ? 3.0 * perspective + 4.0 * u : perspective) + 0x1p-23);
+  s.depthBound = float(6.0 * rho * epsL * std::max(1.0, lMax) + 6.0 * u + 0x1p-23);
   return true;
 }
 

@@ -163,10 +163,10 @@ Framebuffer ReferenceTracer::trace() const {
     planes.id[pixel] = triangle;
     for (int i = 0; i < 3; ++i) planes.bary[i][pixel] = float(hit.b[i]);
     planes.depth[pixel] = float(hit.t * glm::dot(ray.direction, camera.forward()));
-    // Float output rounds each value once more: half an ulp of numbers up to 1 (b can leave
-    // [0, 1] only within Embree's band), a relative 2^-24 for depth.
-    planes.baryBound[pixel] = float(hit.baryBound + 0x1p-24);
-    planes.depthBound[pixel] = float(hit.depthBound + 0x1p-24);
+    // Float output rounds each value once more: half an ulp of numbers below 2 (b leaves
+    // [0, 1] only within Embree's band), 2^-23 relative for depth.
+    planes.baryBound[pixel] = float(hit.baryBound + 0x1p-23);
+    planes.depthBound[pixel] = float(hit.depthBound + 0x1p-23);
     // Screen distance to the edge opposite vertex i: the pixel's direction d against the plane
     // through the eye and that edge, measured in the image plane d . forward = 1.
     double nearest = std::numeric_limits<double>::infinity();

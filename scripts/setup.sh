@@ -16,6 +16,7 @@ packages=(
   libpng-dev                     # PNG images for people
   libfreetype-dev fonts-dejavu-core  # legend text in PNG heatmaps
   libgtest-dev                   # the test suite
+  libgmp-dev                     # exact rational oracle of the tests (tests/oracle)
 )
 
 if [[ "${1:-}" == "--test" ]]; then

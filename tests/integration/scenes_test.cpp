@@ -43,6 +43,54 @@ TEST_P(DefaultScene, FailsTheGateInAffineMode) {
 INSTANTIATE_TEST_SUITE_P(Gate, DefaultScene, ::testing::ValuesIn(defaultSceneNames()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
+// The hard cases, in float and double and with the standard depth mapping: the gate passes with
+// every disagreement explained, and it judged by the per-pixel bounds.
+class HardScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HardScene, PassesWithEveryDisagreementExplained) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
+    for (DepthMapping mapping : {DepthMapping::kInverseW, DepthMapping::kStandard}) {
+      app::RenderSettings s = settings(Interpolation::kPerspective, precision);
+      s.raster.depthMapping = mapping;
+      const app::CheckResult r = app::checkScene(scene, s, Thresholds{}, false);
+      EXPECT_TRUE(r.report.pass) << GetParam() << " " << precisionName(precision) << " "
+                                 << depthMappingName(mapping) << reasons(r.report);
+      EXPECT_TRUE(r.report.explained);
+      EXPECT_TRUE(r.report.families[0].bounded);
+      EXPECT_EQ(r.report.explanationCounts[int(Explanation::kUnexplained)], 0u);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, HardScene, ::testing::ValuesIn(hardCaseSpecs()),
+                         [](const ::testing::TestParamInfo<std::string>& p) {
+                           std::string name;
+                           for (char c : p.param) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return name;
+                         });
+
+TEST(Gate, AffineFailsTheHardCasesWithPerspective) {
+  for (const char* name : {"fans", "edges", "perspective", "grazing", "nearplane", "attributes"}) {
+    const app::CheckResult r =
+        app::checkScene(makeBuiltinScene(name), settings(Interpolation::kAffine), Thresholds{}, false);
+    EXPECT_FALSE(r.report.pass) << name << ": affine interpolation passed the gate";
+  }
+}
+
+TEST(Gate, StandardDepthMappingLosesOrderThatInverseWKeeps) {
+  // depthpairs' lower halves are 4x the 1/w resolution apart but below the standard mapping's:
+  // 1/w orders them all, the standard mapping does not, and compare calls those depth ties.
+  const Scene scene = makeBuiltinScene("depthpairs");
+  app::RenderSettings s = settings(Interpolation::kPerspective);
+  const app::CheckResult inverse = app::checkScene(scene, s, Thresholds{}, false);
+  s.raster.depthMapping = DepthMapping::kStandard;
+  const app::CheckResult standard = app::checkScene(scene, s, Thresholds{}, false);
+  EXPECT_EQ(inverse.report.explanationCounts[int(Explanation::kDepthTie)], 0u);
+  EXPECT_GT(standard.report.explanationCounts[int(Explanation::kDepthTie)], 100u);
+  EXPECT_TRUE(standard.report.pass) << reasons(standard.report);
+}
+
 TEST(Gate, AffineFloorErrorIsLargeNotMarginal) {
   const app::CheckResult r =
       app::checkScene(makeBuiltinScene("floor"), settings(Interpolation::kAffine), Thresholds{}, false);

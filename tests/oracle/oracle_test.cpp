@@ -1,0 +1,244 @@
+// The exact oracle's three tiers over every hard case (issue 3), in float and double:
+//   1. rasterizer coverage equals the oracle's, exactly, and does not change when each
+//      triangle's vertex order is rotated; zero-area triangles cover nothing in either path;
+//   2. each path's barycentrics and depth lie within its own reported bound (bound.bary,
+//      bound.depth) of the exact values for its ray or projection;
+//   3. the two paths agree within the sum of their bounds plus the gap between the two exact
+//      answers (the camera's projection matrix and its rays are two double descriptions).
+// Each test prints its headroom (largest error / bound) for docs/numerics.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "core/channels.h"
+#include "rasterizer/rasterizer.h"
+#include "raytracer_ref/reference.h"
+#include "scenes/registry.h"
+#include "tests/oracle/exact.h"
+
+namespace rc {
+namespace {
+
+using oracle::Oracle;
+
+// Pixels evaluated per image with rational arithmetic: every one in the hard cases' small
+// images, a stride through anything larger.
+constexpr std::size_t kMaxOraclePixels = 30000;
+
+std::map<std::uint32_t, std::vector<std::uint32_t>> byTriangle(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+  std::map<std::uint32_t, std::vector<std::uint32_t>> out;
+  for (const auto& [t, pixel] : pairs) out[t].push_back(pixel);
+  for (auto& [t, pixels] : out) std::sort(pixels.begin(), pixels.end());
+  return out;
+}
+
+bool exactlyZeroArea(const Mesh& mesh, std::size_t t) {
+  const glm::uvec3 tri = mesh.triangles[t];
+  oracle::Q p[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) p[i][k] = oracle::Q(double(mesh.positions[tri[i]][k]));
+  }
+  oracle::Q e1[3], e2[3];
+  for (int k = 0; k < 3; ++k) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+  return e1[1] * e2[2] - e1[2] * e2[1] == 0 && e1[2] * e2[0] - e1[0] * e2[2] == 0 &&
+         e1[0] * e2[1] - e1[1] * e2[0] == 0;
+}
+
+class HardCase : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HardCase, CoverageEqualsTheExactOracle) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  for (int bits : {4, 8}) {
+    RasterOptions options;
+    options.subpixelBits = bits;
+    const auto raster = byTriangle(coveredPixels(scene, options));
+    const Oracle exact(scene, bits);
+    int ambiguous = 0, compared = 0;
+    for (std::size_t t = 0; t < scene.mesh.triangleCount(); ++t) {
+      const oracle::CoverageResult o = exact.coverage(t);
+      EXPECT_EQ(o.doubleCovered, 0) << "triangle " << t;
+      if (o.ambiguousSnaps > 0) {
+        ++ambiguous;
+        continue;
+      }
+      const auto it = raster.find(std::uint32_t(t));
+      const std::vector<std::uint32_t> none;
+      const std::vector<std::uint32_t>& got = it == raster.end() ? none : it->second;
+      EXPECT_EQ(got, o.pixels) << GetParam() << ": triangle " << t << " at " << bits << " subpixel bits";
+      ++compared;
+    }
+    std::printf("[oracle] %s: coverage of %d triangles equal at %d bits (%d with a snapping tie skipped)\n",
+                GetParam().c_str(), compared, bits, ambiguous);
+    EXPECT_LE(ambiguous, compared / 10 + 1);
+  }
+}
+
+TEST_P(HardCase, CoverageIgnoresVertexRotation) {
+  Scene scene = makeBuiltinScene(GetParam());
+  const auto before = coveredPixels(scene, RasterOptions{});
+  for (glm::uvec3& t : scene.mesh.triangles) t = {t.y, t.z, t.x};
+  auto after = coveredPixels(scene, RasterOptions{});
+  auto a = before;
+  std::sort(a.begin(), a.end());
+  std::sort(after.begin(), after.end());
+  EXPECT_EQ(a, after);
+}
+
+TEST_P(HardCase, ZeroAreaTrianglesDrawNothingAndAllOutputsAreFinite) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  std::vector<bool> zero(scene.mesh.triangleCount());
+  for (std::size_t t = 0; t < zero.size(); ++t) zero[t] = exactlyZeroArea(scene.mesh, t);
+  RasterOptions doubleOptions;
+  doubleOptions.precision = Precision::kDouble;
+  const Framebuffer images[3] = {rasterize(scene, RasterOptions{}), rasterize(scene, doubleOptions),
+                                 renderReference(scene, ReferenceOptions{})};
+  for (const Framebuffer& fb : images) {
+    const auto& ids = fb.find(channels::kTriangleId)->uints;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (ids[i] == channels::kNoTriangle) continue;
+      ASSERT_LT(ids[i], zero.size());
+      EXPECT_FALSE(zero[ids[i]]) << "zero-area triangle " << ids[i] << " drew pixel " << i;
+      EXPECT_GE(fb.find(channels::kDepth)->floats[i], float(scene.camera.zNear()) * (1.0f - 1e-6f))
+          << "drawn in front of the near plane at pixel " << i;
+    }
+    for (const Channel& c : fb.channels()) {
+      if (c.type != ChannelType::kFloat) continue;
+      const auto bad = std::find_if(c.floats.begin(), c.floats.end(), [](float v) { return !std::isfinite(v); });
+      EXPECT_EQ(bad, c.floats.end()) << c.name << " at pixel " << (bad - c.floats.begin());
+    }
+  }
+}
+
+struct Headroom {
+  double bary = 0.0, depth = 0.0;
+  std::size_t pixels = 0;
+};
+
+// Tier 2 for the rasterizer: its barycentrics and depth against the projection's exact ones.
+Headroom rasterAgainstOracle(const Scene& scene, const Framebuffer& fb, const Oracle& exact) {
+  const auto& ids = fb.find(channels::kTriangleId)->uints;
+  const std::size_t stride = std::max<std::size_t>(1, ids.size() / kMaxOraclePixels);
+  Headroom h;
+  const int width = scene.camera.width();
+  for (std::size_t i = 0; i < ids.size(); i += stride) {
+    if (ids[i] == channels::kNoTriangle) continue;
+    bool defined = false;
+    const int x = int(i % width), y = int(i / width);
+    const auto b = exact.projected(ids[i], x, y, defined);
+    if (!defined) continue;
+    double error = 0.0, depth = 0.0;
+    const glm::uvec3 tri = scene.mesh.triangles[ids[i]];
+    for (int k = 0; k < 3; ++k) {
+      error = std::max(error, std::fabs(double(fb.find(channels::kBary[k])->floats[i]) - b[k]));
+      depth += b[k] * (scene.camera.viewFromWorld() * glm::dvec4(glm::dvec3(scene.mesh.positions[tri[k]]), 1.0)).z * -1.0;
+    }
+    const double bound = fb.find(channels::kBaryBound)->floats[i];
+    const double depthError = std::fabs(double(fb.find(channels::kDepth)->floats[i]) - depth) / depth;
+    EXPECT_LE(error, bound) << scene.name << " pixel (" << x << "," << y << ") triangle " << ids[i];
+    EXPECT_LE(depthError, double(fb.find(channels::kDepthBound)->floats[i]) + 1e-15)
+        << scene.name << " depth at (" << x << "," << y << ")";
+    h.bary = std::max(h.bary, error / bound);
+    h.depth = std::max(h.depth, depthError / double(fb.find(channels::kDepthBound)->floats[i]));
+    ++h.pixels;
+  }
+  return h;
+}
+
+// Tier 2 for the reference: against the exact barycentrics of the camera's double ray.
+Headroom referenceAgainstOracle(const Scene& scene, const Framebuffer& fb, const Oracle& exact) {
+  const auto& ids = fb.find(channels::kTriangleId)->uints;
+  const std::size_t stride = std::max<std::size_t>(1, ids.size() / kMaxOraclePixels);
+  Headroom h;
+  const int width = scene.camera.width();
+  for (std::size_t i = 0; i < ids.size(); i += stride) {
+    if (ids[i] == channels::kNoTriangle) continue;
+    bool defined = false;
+    const int x = int(i % width), y = int(i / width);
+    const auto b = exact.alongRay(ids[i], x, y, defined);
+    if (!defined) continue;
+    double error = 0.0;
+    for (int k = 0; k < 3; ++k) error = std::max(error, std::fabs(double(fb.find(channels::kBary[k])->floats[i]) - b[k]));
+    const double bound = fb.find(channels::kBaryBound)->floats[i];
+    EXPECT_LE(error, bound) << scene.name << " pixel (" << x << "," << y << ") triangle " << ids[i];
+    h.bary = std::max(h.bary, error / bound);
+    ++h.pixels;
+  }
+  return h;
+}
+
+TEST_P(HardCase, EachPathWithinItsBoundOfTheOracleAndBothWithinTheSum) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  const Oracle exact(scene, 8);
+  const Framebuffer reference = renderReference(scene, ReferenceOptions{});
+  const Headroom ref = referenceAgainstOracle(scene, reference, exact);
+  double headroom[2] = {0.0, 0.0}, gap = 0.0, sumHeadroom = 0.0;
+  for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
+    RasterOptions options;
+    options.precision = precision;
+    const Framebuffer raster = rasterize(scene, options);
+    headroom[int(precision)] = rasterAgainstOracle(scene, raster, exact).bary;
+    // Tier 3, same-triangle pixels.
+    const auto& rid = raster.find(channels::kTriangleId)->uints;
+    const auto& eid = reference.find(channels::kTriangleId)->uints;
+    const std::size_t stride = std::max<std::size_t>(1, rid.size() / kMaxOraclePixels);
+    for (std::size_t i = 0; i < rid.size(); i += stride) {
+      if (rid[i] == channels::kNoTriangle || rid[i] != eid[i]) continue;
+      const int x = int(i % scene.camera.width()), y = int(i / scene.camera.width());
+      bool d1 = false, d2 = false;
+      const auto p = exact.projected(rid[i], x, y, d1);
+      const auto r = exact.alongRay(rid[i], x, y, d2);
+      if (!d1 || !d2) continue;
+      double error = 0.0, oracleGap = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        error = std::max(error, std::fabs(double(raster.find(channels::kBary[k])->floats[i]) -
+                                          double(reference.find(channels::kBary[k])->floats[i])));
+        oracleGap = std::max(oracleGap, std::fabs(p[k] - r[k]));
+      }
+      const double bound = double(raster.find(channels::kBaryBound)->floats[i]) +
+                           double(reference.find(channels::kBaryBound)->floats[i]) + oracleGap;
+      EXPECT_LE(error, bound) << scene.name << " (" << x << "," << y << ")";
+      gap = std::max(gap, oracleGap);
+      sumHeadroom = std::max(sumHeadroom, error / bound);
+    }
+  }
+  std::printf("[headroom] %-22s raster float %.3g, raster double %.3g, reference %.3g, paths vs sum %.3g, "
+              "oracle gap %.3g (%zu reference pixels)\n",
+              GetParam().c_str(), headroom[0], headroom[1], ref.bary, sumHeadroom, gap, ref.pixels);
+}
+
+TEST_P(HardCase, OutputBitsIdenticalForOneAndTwoThreadsAndRepeatedRuns) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  RasterOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const Framebuffer a = rasterize(scene, one), b = rasterize(scene, two), c = rasterize(scene, two);
+  ReferenceOptions r1, r2;
+  r1.threads = 1;
+  r2.threads = 2;
+  const Framebuffer d = renderReference(scene, r1), e = renderReference(scene, r2);
+  for (const auto& [x, y] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&d, &e}}) {
+    ASSERT_EQ(x->channels().size(), y->channels().size());
+    for (std::size_t k = 0; k < x->channels().size(); ++k) {
+      const Channel& p = x->channels()[k];
+      const Channel& q = y->channels()[k];
+      EXPECT_EQ(p.name, q.name);
+      EXPECT_EQ(p.uints, q.uints) << p.name;
+      EXPECT_EQ(0, std::memcmp(p.floats.data(), q.floats.data(), p.floats.size() * sizeof(float))) << p.name;
+    }
+  }
+}
+
+std::string testName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name;
+  for (char ch : info.param) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Oracle, HardCase, ::testing::ValuesIn(hardCaseSpecs()), testName);
+
+}  // namespace
+}  // namespace rc
