@@ -86,8 +86,17 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
        << r.coveredEither << " covered</td><td>" << r.classCounts[int(PixelClass::kSameTriangle)] << "</td><td>"
        << r.classCounts[int(PixelClass::kDifferentTriangle)] << "</td><td>" << r.classCounts[int(PixelClass::kTestOnly)]
        << "</td><td>" << r.classCounts[int(PixelClass::kReferenceOnly)] << "</td><td>"
-       << formatNumber(r.disagreementFraction) << " (limit " << formatNumber(r.thresholds.disagreement) << ")</td><td>"
-       << formatNumber(r.coverageFraction) << " (limit " << formatNumber(r.thresholds.coverage) << ")</td></tr>\n</table>\n";
+       << formatNumber(r.disagreementFraction)
+       << (r.explained ? std::string() : " (limit " + formatNumber(r.thresholds.disagreement) + ")") << "</td><td>"
+       << formatNumber(r.coverageFraction)
+       << (r.explained ? std::string() : " (limit " + formatNumber(r.thresholds.coverage) + ")")
+       << "</td></tr>\n</table>\n";
+  if (r.explained) {
+    html << "<p>Disagreements: " << r.explanationCounts[int(Explanation::kEdgeBand)] << " in the edge band ("
+         << formatNumber(r.edgeBand) << " px), " << r.explanationCounts[int(Explanation::kDepthTie)]
+         << " depth ties, " << r.explanationCounts[int(Explanation::kUnexplained)]
+         << " unexplained (the gate allows none).</p>\n";
+  }
   html << "<table>\n<tr><th>family</th><th>max</th><th>mean</th><th>rms</th><th>p50</th><th>p99</th><th>p99.9</th>"
        << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>worst pixel: test / reference</th></tr>\n";
   for (const FamilyReport& f : r.families) {
@@ -96,8 +105,8 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
     html << "<tr><td>" << escape(f.name) << "</td><td>" << formatNumber(st.max) << "</td><td>" << formatNumber(st.mean)
          << "</td><td>" << formatNumber(st.rms) << "</td><td>" << formatNumber(st.p50) << "</td><td>"
          << formatNumber(st.p99) << "</td><td>" << formatNumber(st.p999) << "</td><td>" << st.nanCount + st.infCount
-         << "</td><td>" << formatNumber(f.gated) << (f.range > 0 ? " of range" : "") << "</td><td>"
-         << formatNumber(f.threshold) << "</td><td>" << escape(worst) << "</td></tr>\n";
+         << "</td><td>" << formatNumber(f.gated) << (f.bounded ? " of bound" : f.range > 0 ? " of range" : "")
+         << "</td><td>" << formatNumber(f.threshold) << "</td><td>" << escape(worst) << "</td></tr>\n";
   }
   html << "</table>\n</section>\n";
 }
