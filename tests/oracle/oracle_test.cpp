@@ -242,3 +242,32 @@ INSTANTIATE_TEST_SUITE_P(Oracle, HardCase, ::testing::ValuesIn(hardCaseSpecs()),
 
 }  // namespace
 }  // namespace rc
+
+namespace rc {
+namespace {
+
+TEST(HardCaseAttributes, ConstantStaysConstantAndHugeValuesStayFinite) {
+  const Scene scene = makeBuiltinScene("attributes");
+  RasterOptions doubleOptions;
+  doubleOptions.precision = Precision::kDouble;
+  const float ulp = std::nextafter(3.7f, 4.0f) - 3.7f;
+  for (const Framebuffer& fb : {rasterize(scene, RasterOptions{}), rasterize(scene, doubleOptions),
+                                renderReference(scene, ReferenceOptions{})}) {
+    const auto& ids = fb.find(channels::kTriangleId)->uints;
+    std::size_t covered = 0;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (ids[i] == channels::kNoTriangle) continue;
+      ++covered;
+      for (int c = 0; c < 4; ++c) {
+        const float v = fb.find(channels::attributeChannel("constant", c))->floats[i];
+        ASSERT_LE(std::fabs(v - 3.7f), 8 * ulp) << "pixel " << i << " component " << c << ": " << v;
+      }
+      ASSERT_TRUE(std::isfinite(fb.find(channels::attributeChannel("huge", 0))->floats[i]));
+      ASSERT_TRUE(std::isfinite(fb.find(channels::attributeChannel("mixed", 0))->floats[i]));
+    }
+    EXPECT_GT(covered, 10000u);
+  }
+}
+
+}  // namespace
+}  // namespace rc
