@@ -8,7 +8,11 @@ namespace rc {
 
 double distanceToTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   // Closest point on a triangle to p = 0, by Voronoi regions (Ericson, Real-Time Collision
-  // Detection, 5.1.5).
+  // Detection, 5.1.5). A degenerate triangle (a repeated vertex, collinear vertices) makes some
+  // denominators zero: the segment's start, a vertex, stands in for the point then, or the
+  // nearest vertex for the face region.
+  const double nearestVertex = std::min({glm::length(a), glm::length(b), glm::length(c)});
+  const auto ratio = [](double n, double d) { return d != 0.0 ? n / d : 0.0; };
   const glm::dvec3 ab = b - a, ac = c - a, ap = -a;
   const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0) return glm::length(a);
@@ -16,18 +20,18 @@ double distanceToTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::d
   const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
   if (d3 >= 0.0 && d4 <= d3) return glm::length(b);
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return glm::length(a + ab * (d1 / (d1 - d3)));
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return glm::length(a + ab * ratio(d1, d1 - d3));
   const glm::dvec3 cp = -c;
   const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
   if (d6 >= 0.0 && d5 <= d6) return glm::length(c);
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return glm::length(a + ac * (d2 / (d2 - d6)));
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return glm::length(a + ac * ratio(d2, d2 - d6));
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return glm::length(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    return glm::length(b + (c - b) * ratio(d4 - d3, (d4 - d3) + (d5 - d6)));
   }
   const double sum = va + vb + vc;
-  if (!(sum != 0.0)) return std::min({glm::length(a), glm::length(b), glm::length(c)});
+  if (!(sum != 0.0)) return nearestVertex;
   return glm::length(a + ab * (vb / sum) + ac * (vc / sum));
 }
 
