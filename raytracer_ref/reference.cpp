@@ -73,8 +73,7 @@ struct Planes {
 // 8 covers the few roundings of its edge tests); in pixels, that angle is scaled by the image
 // plane's pixels per unit, and by up to 1 + tan^2 at the image's corners.
 double referenceEdgeBand(const Camera& camera) {
-  const double tanY = std::tan(camera.spec().fovYDegrees * (M_PI / 360.0));
-  const double tanX = tanY * camera.width() / camera.height();
+  const double tanY = camera.tanHalfFovY(), tanX = tanY * camera.aspect();
   const double pixelsPerUnit = camera.height() / (2.0 * tanY);
   return 8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24 * pixelsPerUnit * (1.0 + tanX * tanX + tanY * tanY);
 }
@@ -145,7 +144,7 @@ Framebuffer ReferenceTracer::trace() const {
   std::vector<double> embreeDiff(tasks, 0.0);  // max |Embree bary - double bary| per task
   // Everything written for one hit is recomputed in double from the mesh and the camera's ray.
   const std::vector<std::uint32_t>& source = impl_->source;
-  const double pixelsPerUnit = height / (2.0 * std::tan(camera.spec().fovYDegrees * (M_PI / 360.0)));
+  const double pixelsPerUnit = height / (2.0 * camera.tanHalfFovY());
   const auto shade = [&](int x, int y, const CameraRay& ray, unsigned primID, float u, float v, float tfar,
                          double& embreeDiffMax) {
     const std::uint32_t triangle = source.empty() ? primID : source[primID];

@@ -97,9 +97,8 @@ EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera) {
     const glm::dvec3 relative = glm::dvec3(p) - eye;  // rounded once, below
     for (int k = 0; k < 3; ++k) out.vertices.push_back(float(relative[k]));
   }
-  const double tanY = std::tan(camera.spec().fovYDegrees * (M_PI / 360.0));
   Splitter splitter{camera.forward(), camera.right(), camera.up(), camera.zNear(),
-                    tanY * double(camera.width()) / double(camera.height()), tanY, out};
+                    camera.tanHalfFovY() * camera.aspect(), camera.tanHalfFovY(), out};
   out.indices.reserve(3 * mesh.triangleCount());
   out.source.reserve(mesh.triangleCount());
   bool split = false;

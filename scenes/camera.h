@@ -79,6 +79,10 @@ class Camera {
   glm::dvec3 worldAtRaster(const glm::dvec2& r, double depth) const {
     return spec_.eye + depth * directionThroughRaster(r);
   }
+  // tan(fovY / 2) and width / height: the image plane at depth 1 spans 2 tanHalfFovY()
+  // vertically, so it holds height / (2 tanHalfFovY()) pixels per unit.
+  double tanHalfFovY() const { return tanHalfFovY_; }
+  double aspect() const { return aspect_; }
   // The camera's basis in world space.
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& up() const { return up_; }
