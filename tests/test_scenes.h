@@ -1,11 +1,20 @@
 // Small hand-built scenes for tests: one or a few triangles in front of a camera.
 #pragma once
 
+#include <cctype>
+#include <string>
 #include <vector>
 
 #include "scenes/scene.h"
 
 namespace rc::testing {
+
+// A GoogleTest parameter name for a scene spec: "closed:seed=1" -> "closed_seed_1".
+inline std::string sceneTestName(const std::string& spec) {
+  std::string name;
+  for (char c : spec) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name;
+}
 
 // A scene named `name` with the given triangles (each three consecutive positions), an
 // attribute "uv" equal to each vertex's (x, y), and a camera at `eye` looking at the origin.

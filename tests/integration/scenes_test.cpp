@@ -4,6 +4,7 @@
 
 #include "app/check.h"
 #include "scenes/registry.h"
+#include "tests/test_scenes.h"
 
 namespace rc {
 namespace {
@@ -64,11 +65,7 @@ TEST_P(HardScene, PassesWithEveryDisagreementExplained) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Gate, HardScene, ::testing::ValuesIn(hardCaseSpecs()),
-                         [](const ::testing::TestParamInfo<std::string>& p) {
-                           std::string name;
-                           for (char c : p.param) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& p) { return testing::sceneTestName(p.param); });
 
 TEST(Gate, AffineFailsTheHardCasesWithPerspective) {
   for (const char* name : {"fans", "edges", "perspective", "grazing", "nearplane", "attributes"}) {

@@ -19,6 +19,7 @@
 #include "raytracer_ref/reference.h"
 #include "scenes/registry.h"
 #include "tests/oracle/exact.h"
+#include "tests/test_scenes.h"
 
 namespace rc {
 namespace {
@@ -220,11 +221,7 @@ TEST_P(HardCase, OutputBitsIdenticalForOneAndTwoThreadsAndRepeatedRuns) {
   }
 }
 
-std::string testName(const ::testing::TestParamInfo<std::string>& info) {
-  std::string name;
-  for (char ch : info.param) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  return name;
-}
+std::string testName(const ::testing::TestParamInfo<std::string>& info) { return testing::sceneTestName(info.param); }
 
 INSTANTIATE_TEST_SUITE_P(Oracle, HardCase, ::testing::ValuesIn(hardCaseSpecs()), testName);
 
