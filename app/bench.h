@@ -17,9 +17,10 @@ struct BenchSetting {
   bool isDefault = false;
 };
 
-// The settings bench sweeps: the default, affine, double precision, 4 and 16 subpixel bits, and
-// the default on one thread (for the thread-scaling ratio).
-std::vector<BenchSetting> benchSettings(int threads);
+// The settings bench sweeps, from the command line's rasterizer options: the default, affine,
+// double precision, 4 and 16 subpixel bits, the default on one thread (the thread-scaling
+// ratio), with the SSE2 kernels (what SIMD width buys) and without the diagnostic channels.
+std::vector<BenchSetting> benchSettings(const RasterOptions& base);
 
 struct BenchRow {
   std::string scene, setting;

@@ -30,7 +30,7 @@ int runBenchCommand(BenchArgs& args) {
   }
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
-  const int settingsCount = int(benchSettings(1).size());
+  const int settingsCount = int(benchSettings(RasterOptions{}).size());
   Progress progress(int(scenes.size()) * (1 + settingsCount), args.quiet);
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });

@@ -50,6 +50,16 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
                       "fraction bits of snapped vertex positions used for coverage")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
+  command->add_option("--raster-isa", s.raster.isa,
+                      "instruction set of the rasterizer's pixel kernels; every choice gives the same bits")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, KernelIsa>{{"auto", KernelIsa::kAuto}, {"sse2", KernelIsa::kSse2},
+                                           {"avx2", KernelIsa::kAvx2}},
+          CLI::ignore_case))
+      ->default_str("auto");
+  command->add_flag("--no-diagnostics{false}", s.raster.diagnostics,
+                    "rasterizer: leave out bound.bary, bound.depth, edge.dist and depth.tie (compare then "
+                    "falls back to fixed thresholds)");
   command->add_option("--threads", s.threads, "worker threads, 0 = all cores")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();

@@ -39,6 +39,15 @@ class Framebuffer {
   float* addFloat(const std::string& name, float fill = 0.0f);
   std::uint32_t* addUint(const std::string& name, std::uint32_t fill = 0);
 
+  // For renderers that write every pixel of every channel, frame after frame, into the same
+  // framebuffer: recycle() sets the size (dropping every channel when it changes), drops the
+  // channels not named in `keep` and clears the header attributes; reuseFloat/reuseUint then
+  // return a kept channel's plane, or add the channel, with contents unspecified. A second
+  // frame of the same size so touches no new memory (page faults cost more than rendering).
+  void recycle(int width, int height, const std::vector<std::string>& keep);
+  float* reuseFloat(const std::string& name);
+  std::uint32_t* reuseUint(const std::string& name);
+
   const Channel* find(const std::string& name) const;
   Channel* find(const std::string& name);
   const std::deque<Channel>& channels() const { return channels_; }
@@ -47,6 +56,8 @@ class Framebuffer {
   std::map<std::string, std::string> attributes;
 
  private:
+  Channel& reuseChannel(const std::string& name, ChannelType type);
+
   int width_ = 0;
   int height_ = 0;
   std::deque<Channel> channels_;

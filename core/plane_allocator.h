@@ -38,6 +38,13 @@ struct PlaneAllocator {
   }
   void deallocate(T* p, std::size_t) { std::free(p); }
 
+  // resize() leaves new elements default-initialised (for floats: unwritten), so a renderer
+  // that writes every pixel does not pay for a fill first; assign(n, value) still fills.
+  template <typename U>
+  void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(static_cast<Args&&>(args)...); }
+
   template <typename U>
   bool operator==(const PlaneAllocator<U>&) const { return true; }
 };

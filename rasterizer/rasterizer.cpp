@@ -1,17 +1,20 @@
 // The rasterizer pipeline. Stages, each in its own loop so that per-triangle work never
 // enters the pixel loops:
-//   1. transform: world -> clip, in double through the camera;
-//   2. clip + set-up in double, in parallel blocks of triangles, concatenated in triangle
-//      order; only the per-pixel coefficients are rounded to Real (setup.h);
-//   3. binning of set-ups into 64x64 tiles, in set-up order;
-//   4. per tile (in parallel): coverage + depth test into a tile-local visibility buffer
-//      (set-up index + 1/w), then resolve: barycentrics, depth and attributes for the winner.
-// Tiles own disjoint pixels and visit set-ups in triangle order, so the output does not depend
-// on the thread count; depth ties go to the lower triangle index.
+//   1. transform: world -> clip, in double through the camera, in parallel;
+//   2. per block of triangles, in parallel: clip + set-up in double (only the per-pixel
+//      coefficients are rounded to Real, setup.h), then the block's count per 64x64 tile;
+//   3. a prefix sum over (tile, block) places every block's list for every tile, and the
+//      blocks fill them in parallel: each tile's list is in block order, so triangle order;
+//   4. per tile, in parallel: the SIMD kernels of tile_kernel.h (coverage + depth test into a
+//      tile-local visibility buffer, then resolve for each pixel's winner).
+// Tiles own disjoint pixels and visit set-ups in triangle order, and blocks are cut by
+// triangle count alone, so the output does not depend on the thread count; depth ties go to
+// the lower triangle index. All working memory lives in the Rasterizer and is reused.
 #include "rasterizer/rasterizer.h"
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <type_traits>
 #include <cmath>
@@ -22,8 +25,8 @@
 #include "core/parallel.h"
 #include "core/preview.h"
 #include "rasterizer/clip.h"
-#include "rasterizer/interpolate.h"
 #include "rasterizer/setup.h"
+#include "rasterizer/tile_kernel.h"
 
 namespace rc {
 
@@ -36,32 +39,69 @@ const char* precisionName(Precision precision) {
 const char* depthMappingName(DepthMapping mapping) {
   return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
 }
+const char* kernelIsaName(KernelIsa isa) {
+  switch (isa) {
+    case KernelIsa::kSse2: return "sse2";
+    case KernelIsa::kAvx2: return "avx2";
+    default: return "auto";
+  }
+}
+
+KernelIsa resolveKernelIsa(KernelIsa isa) {
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  if (isa == KernelIsa::kAuto) return avx2 ? KernelIsa::kAvx2 : KernelIsa::kSse2;
+  if (isa == KernelIsa::kAvx2 && !avx2) throw usageError("this CPU lacks AVX2; choose --raster-isa sse2 or auto");
+  return isa;
+}
 
 namespace {
 
-constexpr int kTileSize = 64;
-constexpr int kTrianglesPerBlock = 8192;
-constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+using kernel::kTileSize;
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+constexpr std::size_t kTrianglesPerBlock = 8192;
+// Names are (block << 20) | index (tile_kernel.h): a block's up to 7 sub-triangles per
+// triangle must stay below 2^20, and block numbers below 4095 so no name equals kEmpty.
+constexpr std::size_t kMaxBlocks = 4094;
+constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockShift) / (kMaxClipVertices - 2) - 1;
 
 template <typename Real>
 struct SetupBlock {
-  std::vector<TriangleSetup<Real>> setups;
+  std::vector<CoverageSetup<Real>> coverage;
+  std::vector<ShadeSetup<Real>> shade;
   std::vector<glm::mat<3, 3, Real>> clipMaps;  // columns: source barycentrics of sub-vertices
+  std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
+};
+
+template <typename Real>
+struct Frame {
+  std::vector<glm::dvec4> clip;      // per mesh vertex
+  std::vector<glm::dvec2> raster;    // per mesh vertex, when its outcode is 0
+  std::vector<std::uint8_t> outcode;  // per mesh vertex (clip.h)
+  std::vector<double> largest;   // per transform block: max |world coordinate|, at least 1
+  std::vector<SetupBlock<Real>> blocks;
+  std::vector<const CoverageSetup<Real>*> blockCoverage;
+  std::vector<const ShadeSetup<Real>*> blockShade;
+  std::vector<const glm::mat<3, 3, Real>*> blockClipMaps;
+  std::vector<std::size_t> binStart;  // per tile + 1
+  std::vector<std::uint32_t> binned;  // set-up names, tile by tile
 };
 
 template <typename Real>
 struct Pipeline {
   const Scene& scene;
   const RasterOptions& options;
-  int width, height;
+  Frame<Real>& frame;
+  int width, height, tilesX, tilesY;
+  std::size_t blockSize;
   ClipVolume<double> volume;
-  std::vector<glm::dvec4> clip;  // per mesh vertex
-  std::vector<TriangleSetup<Real>> setups;
-  std::vector<glm::mat<3, 3, Real>> clipMaps;
   SetupContext context{};
 
-  Pipeline(const Scene& s, const RasterOptions& o)
-      : scene(s), options(o), width(s.camera.width()), height(s.camera.height()) {
+  Pipeline(const Scene& s, const RasterOptions& o, Frame<Real>& workspace)
+      : scene(s), options(o), frame(workspace), width(s.camera.width()), height(s.camera.height()) {
     // Guard band: 2^(28 - bits) pixels from the viewport centre, so that snapped positions
     // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it.
     const double guardPixels = std::ldexp(1.0, 28 - o.subpixelBits);
@@ -71,6 +111,14 @@ struct Pipeline {
                        std::to_string(height) + " image (exact int64 edges need at most " +
                        std::to_string(28 - int(std::ceil(std::log2(std::max(width, height))))) +
                        " bits)");
+    }
+    tilesX = (width + kTileSize - 1) / kTileSize;
+    tilesY = (height + kTileSize - 1) / kTileSize;
+    const std::size_t count = s.mesh.triangles.size();
+    blockSize = std::max(kTrianglesPerBlock, (count + kMaxBlocks - 1) / kMaxBlocks);
+    if (blockSize > kMaxTrianglesPerBlock) {
+      throw usageError("the rasterizer takes at most " + std::to_string(kMaxBlocks * kMaxTrianglesPerBlock) +
+                       " triangles, got " + std::to_string(count));
     }
     volume.zNear = s.camera.zNear();
     volume.zFar = s.camera.zFar();
@@ -89,23 +137,33 @@ struct Pipeline {
     }
   }
 
+  int tileCount() const { return tilesX * tilesY; }
+
   void transform() {
     const glm::dmat4 clipFromWorld = scene.camera.clipFromWorld();
     const auto& positions = scene.mesh.positions;
-    clip.resize(positions.size());
+    frame.clip.resize(positions.size());
+    frame.raster.resize(positions.size());
+    frame.outcode.resize(positions.size());
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
-    std::vector<double> largest(blocks, 1.0);  // max |world coordinate| per block, at least 1
+    frame.largest.assign(blocks, 1.0);
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
+      double largest = 1.0;
       for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
         const glm::dvec3 p(positions[i]);
-        clip[i] = clipFromWorld * glm::dvec4(p, 1.0);
-        largest[b] = std::max({largest[b], std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+        const glm::dvec4 c = clipFromWorld * glm::dvec4(p, 1.0);
+        frame.clip[i] = c;
+        frame.outcode[i] = std::uint8_t(volume.outcode(c));
+        if (frame.outcode[i] == 0) frame.raster[i] = rasterOf(c);  // what emit() would compute
+        largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
       }
+      frame.largest[b] = largest;
     });
     // Each clip coordinate is a 4-term dot product in double (p_3 = 1):
     // error <= 4 u sum_j |M_rj| |p_j| <= 4 u (max|p| sum_{j<3} |M_rj| + |M_r3|).
-    const double maxCoordinate = largest.empty() ? 1.0 : *std::max_element(largest.begin(), largest.end());
+    const double maxCoordinate =
+        frame.largest.empty() ? 1.0 : *std::max_element(frame.largest.begin(), frame.largest.end());
     double bound = 0.0;
     for (int r = 0; r < 4; ++r) {
       double linear = 0.0;
@@ -115,29 +173,33 @@ struct Pipeline {
     context.clipError = 4.0 * 0x1p-53 * bound;
   }
 
-  void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3],
+  glm::dvec2 rasterOf(const glm::dvec4& c) const {
+    return {scene.camera.rasterXFromNdc(c.x / c.w), scene.camera.rasterYFromNdc(c.y / c.w)};
+  }
+
+  void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3], const glm::dvec2 raster[3],
             int clipMap, unsigned innerEdges) const {
-    glm::dvec2 raster[3];
-    for (int i = 0; i < 3; ++i) {
-      raster[i].x = scene.camera.rasterXFromNdc(sub[i].x / sub[i].w);
-      raster[i].y = scene.camera.rasterYFromNdc(sub[i].y / sub[i].w);
-    }
-    TriangleSetup<Real> s;
-    if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, s)) return;
+    CoverageSetup<Real> c;
+    ShadeSetup<Real> s;
+    if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, c, s)) return;
     s.triangle = triangle;
     s.clipMap = clipMap;
-    block.setups.push_back(s);
+    block.coverage.push_back(c);
+    block.shade.push_back(s);
   }
 
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
     const auto& triangles = scene.mesh.triangles;
+    const auto& clip = frame.clip;
     for (std::size_t t = begin; t < end; ++t) {
-      const glm::dvec4 v[3] = {clip[triangles[t].x], clip[triangles[t].y], clip[triangles[t].z]};
-      const unsigned c0 = volume.outcode(v[0]), c1 = volume.outcode(v[1]), c2 = volume.outcode(v[2]);
+      const glm::uvec3 tri = triangles[t];
+      const unsigned c0 = frame.outcode[tri.x], c1 = frame.outcode[tri.y], c2 = frame.outcode[tri.z];
       if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
+      const glm::dvec4 v[3] = {clip[tri.x], clip[tri.y], clip[tri.z]};
       const auto id = static_cast<std::uint32_t>(t);
       if ((c0 | c1 | c2) == 0) {
-        emit(block, id, v, -1, 0u);
+        const glm::dvec2 raster[3] = {frame.raster[tri.x], frame.raster[tri.y], frame.raster[tri.z]};
+        emit(block, id, v, raster, -1, 0u);
         continue;
       }
       const ClipVertex<double> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
@@ -145,168 +207,138 @@ struct Pipeline {
       const int n = clipPolygon(in, volume, c0 | c1 | c2, poly);
       for (int k = 1; k + 1 < n; ++k) {  // fan around poly[0]
         const glm::dvec4 sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
+        const glm::dvec2 raster[3] = {rasterOf(sub[0]), rasterOf(sub[1]), rasterOf(sub[2])};
         block.clipMaps.push_back(
             glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)));
         // The fan's diagonals poly[0]-poly[k] (opposite vertex 2) and poly[k+1]-poly[0]
         // (opposite vertex 1) run inside the polygon, except its first and last edges.
         const unsigned inner = (k > 1 ? 4u : 0u) | (k + 2 < n ? 2u : 0u);
-        emit(block, id, sub, int(block.clipMaps.size()) - 1, inner);
+        emit(block, id, sub, raster, int(block.clipMaps.size()) - 1, inner);
       }
     }
   }
 
-  void setupAll() {
-    const std::size_t count = scene.mesh.triangles.size();
-    const int blocks = int((count + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
-    std::vector<SetupBlock<Real>> parts(blocks);
-    parallelFor(blocks, options.threads, [&](int b) {
-      const std::size_t begin = std::size_t(b) * kTrianglesPerBlock;
-      parts[b].setups.reserve(kTrianglesPerBlock);
-      setupTriangleRange(begin, std::min(count, begin + kTrianglesPerBlock), parts[b]);
-    });
-    std::size_t total = 0;
-    for (const SetupBlock<Real>& part : parts) total += part.setups.size();
-    setups.reserve(total);
-    for (SetupBlock<Real>& part : parts) {  // in block order: triangle order is kept
-      const int offset = int(clipMaps.size());
-      for (TriangleSetup<Real>& s : part.setups) {
-        if (s.clipMap >= 0) s.clipMap += offset;
-        setups.push_back(s);
-      }
-      clipMaps.insert(clipMaps.end(), part.clipMaps.begin(), part.clipMaps.end());
-    }
-  }
-};
-
-// Output planes, resolved once before the pixel loops.
-struct OutputPlanes {
-  std::uint32_t* id;
-  float* bary[3];
-  float* depth;
-  float* baryBound;
-  float* depthBound;
-  float* edgeDistance;
-  float* depthTie;
-  struct AttributeOut {
-    const float* values;  // per vertex, `components` each
-    int components;
-    float* out[4];
-  };
-  std::vector<AttributeOut> attributes;
-};
-
-OutputPlanes addOutputChannels(Framebuffer& fb, const Mesh& mesh) {
-  OutputPlanes planes;
-  planes.id = fb.addUint(channels::kTriangleId, channels::kNoTriangle);
-  for (int i = 0; i < 3; ++i) planes.bary[i] = fb.addFloat(channels::kBary[i]);
-  planes.depth = fb.addFloat(channels::kDepth);
-  planes.baryBound = fb.addFloat(channels::kBaryBound);
-  planes.depthBound = fb.addFloat(channels::kDepthBound);
-  planes.edgeDistance = fb.addFloat(channels::kEdgeDistance);
-  planes.depthTie = fb.addFloat(channels::kDepthTie);
-  for (const Attribute& a : mesh.attributes) {
-    OutputPlanes::AttributeOut out{a.values.data(), a.components, {}};
-    for (int c = 0; c < a.components; ++c) {
-      out.out[c] = fb.addFloat(channels::attributeChannel(a.name, c));
-    }
-    planes.attributes.push_back(out);
-  }
-  return planes;
-}
-
-template <typename Real>
-void renderTile(const Pipeline<Real>& p, const std::uint32_t* binBegin, const std::uint32_t* binEnd,
-                int tileX, int tileY, const OutputPlanes& out) {
-  const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
-  const int x1 = std::min(p.width, x0 + kTileSize) - 1, y1 = std::min(p.height, y0 + kTileSize) - 1;
-  std::array<std::uint32_t, kTileSize * kTileSize> winner;
-  std::array<Real, kTileSize * kTileSize> nearest;  // 1/w of the winner: larger is nearer
-  winner.fill(kEmpty);
-  nearest.fill(-std::numeric_limits<Real>::infinity());
-
-  for (const std::uint32_t* it = binBegin; it != binEnd; ++it) {
-    const std::uint32_t index = *it;
-    const TriangleSetup<Real>& s = p.setups[index];
-    EdgeFunctions edges{};
-    const std::int64_t xf[3] = {s.xFixed[0], s.xFixed[1], s.xFixed[2]};
-    const std::int64_t yf[3] = {s.yFixed[0], s.yFixed[1], s.yFixed[2]};
-    makeEdgeFunctions(xf, yf, edges);
-    forEachCoveredPixel(edges, p.options.subpixelBits, std::max(x0, s.minX), std::max(y0, s.minY),
-                        std::min(x1, s.maxX), std::min(y1, s.maxY), [&](int x, int y) {
-                          const Real z = depthKeyAt(s, offsetX(s, x), offsetY(s, y));
-                          const int local = (y - y0) * kTileSize + (x - x0);
-                          if (z > nearest[local]) {  // strict: the earlier triangle keeps a tie
-                            nearest[local] = z;
-                            winner[local] = index;
-                          }
-                        });
-  }
-
-  const bool perspective = p.options.interpolation == Interpolation::kPerspective;
-  const auto& triangles = p.scene.mesh.triangles;
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) {
-      const std::uint32_t index = winner[(y - y0) * kTileSize + (x - x0)];
-      if (index == kEmpty) continue;
-      const TriangleSetup<Real>& s = p.setups[index];
-      const Real px = offsetX(s, x), py = offsetY(s, y);
-      Real l[3];
-      screenBarycentrics(s, px, py, l);
-      const Recovered<Real> r = perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
-      glm::vec<3, Real> b(r.b[0], r.b[1], r.b[2]);
-      if (s.clipMap >= 0) b = p.clipMaps[s.clipMap] * b;  // sub-triangle -> source triangle
-      const std::size_t pixel = std::size_t(y) * p.width + x;
-      out.id[pixel] = s.triangle;
-      for (int i = 0; i < 3; ++i) out.bary[i][pixel] = float(b[i]);
-      out.depth[pixel] = float(r.depth);
-      out.baryBound[pixel] = s.baryBound;
-      out.depthBound[pixel] = s.depthBound;
-      out.edgeDistance[pixel] = edgeDistanceAt(s, l);
-      out.depthTie[pixel] = depthTieAt(s, px, py, p.context.unitRoundoff, p.context.keyB, double(r.depth));
-      const glm::uvec3& tri = triangles[s.triangle];
-      for (const OutputPlanes::AttributeOut& a : out.attributes) {
-        const float* v0 = a.values + std::size_t(tri.x) * a.components;
-        const float* v1 = a.values + std::size_t(tri.y) * a.components;
-        const float* v2 = a.values + std::size_t(tri.z) * a.components;
-        for (int c = 0; c < a.components; ++c) {
-          a.out[c][pixel] = float(b[0] * Real(v0[c]) + b[1] * Real(v1[c]) + b[2] * Real(v2[c]));
-        }
-      }
-    }
-  }
-}
-
-template <typename Real>
-Framebuffer rasterizeAs(const Scene& scene, const RasterOptions& options) {
-  Pipeline<Real> p(scene, options);
-  p.transform();
-  p.setupAll();
-
-  // Binning by counting sort: one pass counts set-ups per tile, a prefix sum places each
-  // tile's list in one flat array, a second pass fills it in set-up (= triangle) order.
-  const int tilesX = (p.width + kTileSize - 1) / kTileSize;
-  const int tilesY = (p.height + kTileSize - 1) / kTileSize;
-  std::vector<std::size_t> binStart(std::size_t(tilesX) * tilesY + 1, 0);
-  const auto forEachTile = [&](const TriangleSetup<Real>& s, auto&& fn) {
+  template <typename Fn>
+  void forEachTile(const CoverageSetup<Real>& s, Fn&& fn) const {
     for (int ty = s.minY / kTileSize; ty <= s.maxY / kTileSize; ++ty) {
       for (int tx = s.minX / kTileSize; tx <= s.maxX / kTileSize; ++tx) fn(std::size_t(ty) * tilesX + tx);
     }
-  };
-  for (const TriangleSetup<Real>& s : p.setups) forEachTile(s, [&](std::size_t t) { ++binStart[t + 1]; });
-  for (std::size_t t = 1; t < binStart.size(); ++t) binStart[t] += binStart[t - 1];
-  std::vector<std::uint32_t> binned(binStart.back());
-  std::vector<std::size_t> cursor(binStart.begin(), binStart.end() - 1);
-  for (std::size_t i = 0; i < p.setups.size(); ++i) {
-    forEachTile(p.setups[i], [&](std::size_t t) { binned[cursor[t]++] = std::uint32_t(i); });
   }
 
-  Framebuffer fb(p.width, p.height);
-  const OutputPlanes out = addOutputChannels(fb, scene.mesh);
-  parallelFor(tilesX * tilesY, options.threads, [&](int tile) {
-    const std::uint32_t* begin = binned.data() + binStart[tile];
-    renderTile(p, begin, begin + (binStart[tile + 1] - binStart[tile]), tile % tilesX, tile / tilesX, out);
+  // Stages 2 and 3: set-ups per block and their bins.
+  void setupAndBin(StageTimes& times) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::size_t count = scene.mesh.triangles.size();
+    const int blocks = int((count + blockSize - 1) / blockSize);
+    const std::size_t tiles = std::size_t(tileCount());
+    frame.blocks.resize(std::size_t(blocks));
+    parallelFor(blocks, options.threads, [&](int b) {
+      SetupBlock<Real>& block = frame.blocks[b];
+      block.coverage.clear();
+      block.shade.clear();
+      block.clipMaps.clear();
+      const std::size_t begin = std::size_t(b) * blockSize;
+      setupTriangleRange(begin, std::min(count, begin + blockSize), block);
+      block.tileCursor.assign(tiles, 0);
+      for (const CoverageSetup<Real>& c : block.coverage) forEachTile(c, [&](std::size_t t) { ++block.tileCursor[t]; });
+    });
+    times.setupMs = millisecondsSince(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    frame.blockCoverage.resize(std::size_t(blocks));
+    frame.blockShade.resize(std::size_t(blocks));
+    frame.blockClipMaps.resize(std::size_t(blocks));
+    frame.binStart.resize(tiles + 1);
+    std::size_t total = 0;
+    for (std::size_t t = 0; t < tiles; ++t) {  // (tile, block) order
+      frame.binStart[t] = total;
+      for (SetupBlock<Real>& block : frame.blocks) {
+        const std::size_t n = block.tileCursor[t];
+        block.tileCursor[t] = total;
+        total += n;
+      }
+    }
+    frame.binStart[tiles] = total;
+    frame.binned.resize(total);
+    parallelFor(blocks, options.threads, [&](int b) {
+      SetupBlock<Real>& block = frame.blocks[b];
+      frame.blockCoverage[b] = block.coverage.data();
+      frame.blockShade[b] = block.shade.data();
+      frame.blockClipMaps[b] = block.clipMaps.data();
+      for (std::size_t i = 0; i < block.coverage.size(); ++i) {
+        const auto name = std::uint32_t((std::size_t(b) << kernel::kBlockShift) | i);
+        forEachTile(block.coverage[i], [&](std::size_t t) { frame.binned[block.tileCursor[t]++] = name; });
+      }
+    });
+    times.binMs = millisecondsSince(t1);
+  }
+};
+
+kernel::Outputs outputPlanes(Framebuffer& fb, const Mesh& mesh, bool diagnostics) {
+  std::vector<std::string> names = {channels::kTriangleId, channels::kBary[0], channels::kBary[1],
+                                    channels::kBary[2], channels::kDepth};
+  if (diagnostics) {
+    names.insert(names.end(), {channels::kBaryBound, channels::kDepthBound, channels::kEdgeDistance,
+                               channels::kDepthTie});
+  }
+  for (const Attribute& a : mesh.attributes) {
+    for (int c = 0; c < a.components; ++c) names.push_back(channels::attributeChannel(a.name, c));
+  }
+  fb.recycle(fb.width(), fb.height(), names);
+  kernel::Outputs out{};
+  out.width = fb.width();
+  out.id = fb.reuseUint(channels::kTriangleId);
+  for (int i = 0; i < 3; ++i) out.bary[i] = fb.reuseFloat(channels::kBary[i]);
+  out.depth = fb.reuseFloat(channels::kDepth);
+  if (diagnostics) {
+    out.baryBound = fb.reuseFloat(channels::kBaryBound);
+    out.depthBound = fb.reuseFloat(channels::kDepthBound);
+    out.edgeDistance = fb.reuseFloat(channels::kEdgeDistance);
+    out.depthTie = fb.reuseFloat(channels::kDepthTie);
+  }
+  for (const Attribute& a : mesh.attributes) {
+    kernel::Outputs::Attribute attribute{a.values.data(), a.components, {}};
+    for (int c = 0; c < a.components; ++c) attribute.out[c] = fb.reuseFloat(channels::attributeChannel(a.name, c));
+    out.attributes.push_back(attribute);
+    out.attributeComponents += a.components;
+  }
+  return out;
+}
+
+template <typename Real>
+void renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
+                 StageTimes& times) {
+  auto t0 = std::chrono::steady_clock::now();
+  Pipeline<Real> p(scene, options, frame);
+  p.transform();
+  times.transformMs = millisecondsSince(t0);
+  p.setupAndBin(times);
+  t0 = std::chrono::steady_clock::now();
+
+  if (fb.width() != p.width || fb.height() != p.height) fb.recycle(p.width, p.height, {});
+  const kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
+  kernel::Input<Real> in{};
+  in.coverage = frame.blockCoverage.data();
+  in.shade = frame.blockShade.data();
+  in.clipMaps = frame.blockClipMaps.data();
+  in.triangles = scene.mesh.triangles.data();
+  in.subpixelBits = options.subpixelBits;
+  in.perspective = options.interpolation == Interpolation::kPerspective;
+  // depthTieAt's 5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB, evaluated in Real: its own
+  // handful of roundings (under 8 u relative) is covered by the factor 1 + 2^-16.
+  in.tieScale = Real(5.0 * p.context.unitRoundoff / p.context.keyB * (1.0 + 0x1p-16));
+  const bool avx2 = resolveKernelIsa(options.isa) == KernelIsa::kAvx2;
+  parallelFor(p.tileCount(), options.threads, [&](int tile) {
+    const int tx = tile % p.tilesX, ty = tile / p.tilesX;
+    kernel::TileJob job{frame.binned.data() + frame.binStart[tile], frame.binStart[tile + 1] - frame.binStart[tile],
+                        tx * kTileSize, ty * kTileSize, std::min(p.width, (tx + 1) * kTileSize) - 1,
+                        std::min(p.height, (ty + 1) * kTileSize) - 1};
+    if (avx2) {
+      kernel::renderTileAvx2(in, out, job);
+    } else {
+      kernel::renderTileSse2(in, out, job);
+    }
   });
-  return fb;
+  times.tilesMs = millisecondsSince(t0);
 }
 
 void checkSubpixelBits(const RasterOptions& options) {
@@ -317,23 +349,57 @@ void checkSubpixelBits(const RasterOptions& options) {
 
 template <typename Real>
 std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene& scene, const RasterOptions& options) {
-  Pipeline<Real> p(scene, options);
+  Frame<Real> frame;
+  Pipeline<Real> p(scene, options, frame);
   p.transform();
-  p.setupAll();
+  StageTimes times;
+  p.setupAndBin(times);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const TriangleSetup<Real>& s : p.setups) {
-    EdgeFunctions edges{};
-    const std::int64_t xf[3] = {s.xFixed[0], s.xFixed[1], s.xFixed[2]};
-    const std::int64_t yf[3] = {s.yFixed[0], s.yFixed[1], s.yFixed[2]};
-    makeEdgeFunctions(xf, yf, edges);
-    forEachCoveredPixel(edges, options.subpixelBits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y) {
-      pairs.emplace_back(s.triangle, std::uint32_t(y) * std::uint32_t(p.width) + std::uint32_t(x));
-    });
+  std::vector<std::uint32_t> pixels;
+  for (const SetupBlock<Real>& block : frame.blocks) {
+    for (std::size_t i = 0; i < block.coverage.size(); ++i) {
+      pixels.clear();
+      kernel::coveredPixelsOf(block.coverage[i], options.subpixelBits, pixels, p.width);
+      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.shade[i].triangle, pixel);
+    }
   }
   return pairs;
 }
 
 }  // namespace
+
+struct Rasterizer::Workspace {
+  Frame<float> single;
+  Frame<double> twice;
+};
+
+Rasterizer::Rasterizer(const RasterOptions& options) : options_(options), workspace_(std::make_unique<Workspace>()) {
+  checkSubpixelBits(options_);
+  resolveKernelIsa(options_.isa);
+}
+
+Rasterizer::~Rasterizer() = default;
+
+void Rasterizer::render(const Scene& scene, Framebuffer& target) {
+  if (options_.precision == Precision::kFloat) {
+    renderFrame(scene, options_, workspace_->single, target, times_);
+  } else {
+    renderFrame(scene, options_, workspace_->twice, target, times_);
+  }
+  target.attributes[channels::header::kRenderer] = "raster";
+  target.attributes[channels::header::kMode] = interpolationName(options_.interpolation);
+  target.attributes[channels::header::kPrecision] = precisionName(options_.precision);
+  target.attributes["rastercheck.subpixelBits"] = std::to_string(options_.subpixelBits);
+  target.attributes["rastercheck.depthMapping"] = depthMappingName(options_.depthMapping);
+  target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
+  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
+  // raster positions themselves are far more accurate than that.
+  char band[32];
+  std::snprintf(band, sizeof band, "%.6g", 0.7072 * std::ldexp(1.0, -options_.subpixelBits));
+  target.attributes[channels::header::kEdgeBand] = band;
+  target.attributes[channels::header::kScene] = scene.name;
+  target.attributes[channels::header::kCamera] = scene.camera.describe();
+}
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixels(const Scene& scene, const RasterOptions& options) {
   checkSubpixelBits(options);
@@ -342,22 +408,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixels(const Scene& 
 }
 
 Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {
-  checkSubpixelBits(options);
-  Framebuffer fb = options.precision == Precision::kFloat ? rasterizeAs<float>(scene, options)
-                                                          : rasterizeAs<double>(scene, options);
+  Framebuffer fb;
+  Rasterizer(options).render(scene, fb);
   addPreview(fb);
-  fb.attributes[channels::header::kRenderer] = "raster";
-  fb.attributes[channels::header::kMode] = interpolationName(options.interpolation);
-  fb.attributes[channels::header::kPrecision] = precisionName(options.precision);
-  fb.attributes["rastercheck.subpixelBits"] = std::to_string(options.subpixelBits);
-  fb.attributes["rastercheck.depthMapping"] = depthMappingName(options.depthMapping);
-  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
-  // raster positions themselves are far more accurate than that.
-  char band[32];
-  std::snprintf(band, sizeof band, "%.6g", 0.7072 * std::ldexp(1.0, -options.subpixelBits));
-  fb.attributes[channels::header::kEdgeBand] = band;
-  fb.attributes[channels::header::kScene] = scene.name;
-  fb.attributes[channels::header::kCamera] = scene.camera.describe();
   return fb;
 }
 

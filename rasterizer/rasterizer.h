@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -23,7 +24,15 @@ enum class DepthMapping {
               // infinite far plane): in float, 2^-24 z / n relative near d = 1
 };
 
+// The instruction set of the pixel kernels. Every level runs the same sequence of IEEE
+// operations lane by lane (no FMA, no approximate reciprocals), so the output bits are the same
+// on every level; auto picks the widest the CPU has.
+enum class KernelIsa { kAuto, kSse2, kAvx2 };
+
 const char* interpolationName(Interpolation mode);
+const char* kernelIsaName(KernelIsa isa);
+// The level `isa` resolves to on this CPU; throws usageError when the CPU lacks it.
+KernelIsa resolveKernelIsa(KernelIsa isa);
 const char* precisionName(Precision precision);
 const char* depthMappingName(DepthMapping mapping);
 
@@ -33,11 +42,40 @@ struct RasterOptions {
   int subpixelBits = 8;  // fixed-point fraction bits of snapped vertices for coverage (1..16)
   DepthMapping depthMapping = DepthMapping::kInverseW;
   int threads = 0;       // worker threads; 0 = all cores
+  bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
+  KernelIsa isa = KernelIsa::kAuto;
 };
 
-// Renders tri.id, bary.b0..b2, depth.z and every mesh attribute (attr.<name>.<c>), the
-// diagnostics bound.bary, bound.depth, edge.dist and depth.tie (docs/numerics.md), plus an
-// RGB preview. Throws usageError when subpixelBits does not fit the image size.
+// A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real
+// renderer does. render() writes tri.id, bary.b0..b2, depth.z, every mesh attribute
+// (attr.<name>.<c>) and, with options.diagnostics, bound.bary, bound.depth, edge.dist and
+// depth.tie (docs/numerics.md), plus the header attributes recording the settings; every
+// pixel of every channel is written, so `target`'s planes are reused when its size is
+// unchanged. No RGB preview. Throws usageError when subpixelBits does not fit the image size.
+// Wall-clock time of each stage of the last frame (rasterizer.cpp's stages 1, 2, 3 and 4).
+struct StageTimes {
+  double transformMs = 0.0, setupMs = 0.0, binMs = 0.0, tilesMs = 0.0;
+};
+
+class Rasterizer {
+ public:
+  explicit Rasterizer(const RasterOptions& options);
+  ~Rasterizer();
+  Rasterizer(const Rasterizer&) = delete;
+  Rasterizer& operator=(const Rasterizer&) = delete;
+
+  void render(const Scene& scene, Framebuffer& target);
+  const RasterOptions& options() const { return options_; }
+  const StageTimes& stageTimes() const { return times_; }
+
+ private:
+  struct Workspace;
+  RasterOptions options_;
+  std::unique_ptr<Workspace> workspace_;
+  StageTimes times_;
+};
+
+// One frame with a fresh Rasterizer, plus the RGB preview.
 Framebuffer rasterize(const Scene& scene, const RasterOptions& options);
 
 // Every (source triangle, pixel index) pair the coverage stage produces, before the depth

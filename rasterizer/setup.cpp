@@ -8,43 +8,61 @@
 namespace rc {
 namespace {
 
-// floor(a / b) and ceil(a / b) for b > 0.
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
+// floor(a / 2^bits) and ceil(a / 2^bits): an arithmetic shift floors (C++20 defines >> on
+// negative values as one), where a 64-bit division costs more than the rest of a set-up.
+std::int64_t floorShift(std::int64_t a, int bits) { return a >> bits; }
+std::int64_t ceilShift(std::int64_t a, int bits) { return -((-a) >> bits); }
+
+// nearbyint in the default rounding mode (to nearest, ties to even) for |x| < 2^51: adding
+// 1.5 * 2^52 leaves no fraction bits, so the sum rounds x as nearbyint does, and the
+// subtraction is exact. Without SSE4.1's roundsd, std::nearbyint is a library call.
+double roundToInteger(double x) { return (x + 0x1.8p52) - 0x1.8p52; }
 
 }  // namespace
 
 template <typename Real>
 bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges,
-                   bool clipped, const SetupContext& ctx, TriangleSetup<Real>& s) {
+                   bool clipped, const SetupContext& ctx, CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
   const int bits = ctx.subpixelBits;
-  const double scale = std::ldexp(1.0, bits);
+  const double scale = double(std::int64_t(1) << bits);
   std::int64_t xf[3], yf[3];
   for (int i = 0; i < 3; ++i) {
-    // Round to nearest, ties to even (the default mode): a pure function of the double input.
-    xf[i] = static_cast<std::int64_t>(std::nearbyint(raster[i].x * scale));
-    yf[i] = static_cast<std::int64_t>(std::nearbyint(raster[i].y * scale));
-    s.xFixed[i] = static_cast<std::int32_t>(xf[i]);
-    s.yFixed[i] = static_cast<std::int32_t>(yf[i]);
+    // Round to nearest, ties to even: a pure function of the double input. The guard band
+    // keeps |raster * scale| below 2^29 (clip.h), well inside roundToInteger's range.
+    xf[i] = static_cast<std::int64_t>(roundToInteger(raster[i].x * scale));
+    yf[i] = static_cast<std::int64_t>(roundToInteger(raster[i].y * scale));
   }
-  EdgeFunctions edges{};
-  if (!makeEdgeFunctions(xf, yf, edges)) return false;  // zero snapped area: no pixels
-
-  // Pixels whose centre (2x+1) * 2^(bits-1) lies within the snapped bounding box.
+  // Pixels whose centre (2x+1) * 2^(bits-1) lies within the snapped bounding box; nothing
+  // more is computed for a triangle that has none (most sub-pixel triangles).
   const std::int64_t half = std::int64_t(1) << (bits - 1), one = std::int64_t(1) << bits;
   const auto [minXf, maxXf] = std::minmax({xf[0], xf[1], xf[2]});
   const auto [minYf, maxYf] = std::minmax({yf[0], yf[1], yf[2]});
-  s.minX = int(std::max<std::int64_t>(0, ceilDiv(minXf - half, one)));
-  s.minY = int(std::max<std::int64_t>(0, ceilDiv(minYf - half, one)));
-  s.maxX = int(std::min<std::int64_t>(ctx.width - 1, floorDiv(maxXf - half, one)));
-  s.maxY = int(std::min<std::int64_t>(ctx.height - 1, floorDiv(maxYf - half, one)));
-  if (s.minX > s.maxX || s.minY > s.maxY) return false;
+  c.minX = int(std::max<std::int64_t>(0, ceilShift(minXf - half, bits)));
+  c.minY = int(std::max<std::int64_t>(0, ceilShift(minYf - half, bits)));
+  c.maxX = int(std::min<std::int64_t>(ctx.width - 1, floorShift(maxXf - half, bits)));
+  c.maxY = int(std::min<std::int64_t>(ctx.height - 1, floorShift(maxYf - half, bits)));
+  if (c.minX > c.maxX || c.minY > c.maxY) return false;
+  EdgeFunctions edges{};
+  if (!makeEdgeFunctions(xf, yf, edges)) return false;  // zero snapped area: no pixels
+  c.flags = 0;
+  for (int i = 0; i < 3; ++i) {  // each below 2^30 in magnitude (coverage.h)
+    c.a[i] = std::int32_t(edges.a[i]), c.b[i] = std::int32_t(edges.b[i]);
+    c.ox[i] = std::int32_t(edges.ox[i]), c.oy[i] = std::int32_t(edges.oy[i]);
+    if (edges.bias[i] != 0) c.flags |= CoverageSetup<Real>::kNotTopLeft << i;
+  }
+  // |E_i| <= |a_i| |X - ox_i| + |b_i| |Y - oy_i| + 1 with |a_i| <= the box's height, |b_i| <=
+  // its width, and X (Y) within the box widened by 9 (1) pixels: 8 lanes past its right side.
+  const std::int64_t spanX = maxXf - minXf, spanY = maxYf - minYf;
+  if (spanX < (std::int64_t(1) << 30) && spanY < (std::int64_t(1) << 30) &&
+      spanY * (spanX + 9 * one) + spanX * (spanY + one) + 1 < (std::int64_t(1) << 31)) {
+    c.flags |= CoverageSetup<Real>::kNarrow;
+  }
 
   // Anchor: the pixel at the centre of the clipped bounding box; every offset is at most R.
-  s.anchorX = s.minX + (s.maxX - s.minX) / 2;
-  s.anchorY = s.minY + (s.maxY - s.minY) / 2;
-  const double R = std::max({s.anchorX - s.minX, s.maxX - s.anchorX, s.anchorY - s.minY, s.maxY - s.anchorY, 0}) + 0.0;
-  const double ax = s.anchorX + 0.5, ay = s.anchorY + 0.5;  // the anchor's centre, exact
+  c.anchorX = c.minX + (c.maxX - c.minX) / 2;
+  c.anchorY = c.minY + (c.maxY - c.minY) / 2;
+  const double R = std::max({c.anchorX - c.minX, c.maxX - c.anchorX, c.anchorY - c.minY, c.maxY - c.anchorY, 0}) + 0.0;
+  const double ax = c.anchorX + 0.5, ay = c.anchorY + 0.5;  // the anchor's centre, exact
   double x[3], y[3], invW[3];
   for (int i = 0; i < 3; ++i) {
     x[i] = raster[i].x - ax;
@@ -70,13 +88,17 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
     s.ly[i] = Real(ly[i]);
     zx += lx[i] * invW[i];
     zy += ly[i] * invW[i];
-    s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(1.0 / std::hypot(lx[i], ly[i]));
+    // |grad l_i| by sqrt of the sum of squares (hypot costs more than the rest of the set-up),
+    // unless a square overflowed or underflowed.
+    const double squares = lx[i] * lx[i] + ly[i] * ly[i];
+    const double length = std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx[i], ly[i]);
+    s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(1.0 / length);
   }
   double invW0 = 0.0;  // 1/w at the anchor
   for (int i = 0; i < 3; ++i) invW0 += l0[i] * invW[i];
-  s.key0 = Real(ctx.keyA + ctx.keyB * invW0);
-  s.keyX = Real(ctx.keyB * zx);
-  s.keyY = Real(ctx.keyB * zy);
+  c.key0 = Real(ctx.keyA + ctx.keyB * invW0);
+  c.keyX = Real(ctx.keyB * zx);
+  c.keyY = Real(ctx.keyB * zy);
 
   // The error bound of docs/numerics.md ("The rasterizer's bound"). u: the per-pixel unit
   // roundoff. Each l_i = l0 + lx dx + ly dy rounds its three coefficients, two products and
@@ -114,8 +136,8 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
 }
 
 template bool setupTriangle<float>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool,
-                                   const SetupContext&, TriangleSetup<float>&);
+                                   const SetupContext&, CoverageSetup<float>&, ShadeSetup<float>&);
 template bool setupTriangle<double>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool,
-                                    const SetupContext&, TriangleSetup<double>&);
+                                    const SetupContext&, CoverageSetup<double>&, ShadeSetup<double>&);
 
 }  // namespace rc

@@ -9,27 +9,47 @@
 // position|) of vertices that may lie 10^6 pixels away (docs/numerics.md).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <glm/glm.hpp>
 
 #include "rasterizer/coverage.h"
 
 namespace rc {
 
+// What the coverage and depth pass reads for every (set-up, tile) pair, kept apart from the
+// resolve's data so that pass streams through half the memory.
 template <typename Real>
-struct TriangleSetup {
+struct CoverageSetup {
+  int minX, minY, maxX, maxY;  // pixels whose centres may be covered, inclusive, in the viewport
+  int anchorX, anchorY;        // the pixel whose centre the planes are anchored at
+  // Edge functions E_i = a[i] (X - ox[i]) + b[i] (Y - oy[i]) of the snapped triangle
+  // (coverage.h, subpixelBits fraction bits, |coordinates| < 2^29), sign-normalised.
+  std::int32_t a[3], b[3], ox[3], oy[3];
+  std::uint32_t flags;         // kNotTopLeft << i: edge i is not top-left; kNarrow (below)
+  Real key0, keyX, keyY;       // depth-test key plane (larger is nearer)
+
+  static constexpr std::uint32_t kNotTopLeft = 1u;  // shifted by the edge number
+  // Every edge value over the bounding box, and up to 8 pixels right of it, is below 2^31:
+  // exact in int32 lanes.
+  static constexpr std::uint32_t kNarrow = 8u;
+
+  EdgeFunctions edges() const {
+    EdgeFunctions e{};
+    for (int i = 0; i < 3; ++i) {
+      e.a[i] = a[i], e.b[i] = b[i], e.ox[i] = ox[i], e.oy[i] = oy[i];
+      e.bias[i] = (flags >> i) & kNotTopLeft ? -1 : 0;
+    }
+    return e;
+  }
+};
+
+// What resolve reads for the pixels a set-up wins.
+template <typename Real>
+struct ShadeSetup {
   std::uint32_t triangle;    // source triangle index (the tri.id written)
   std::int32_t clipMap;      // index of the 3x3 map to source barycentrics; -1 = identity
-  std::int32_t xFixed[3];    // snapped raster positions (subpixelBits fraction bits); |.| < 2^29
-  std::int32_t yFixed[3];
-  int minX, minY, maxX, maxY;  // pixels whose centres may be covered, inclusive, in the viewport
-  int anchorX, anchorY;      // the pixel whose centre the planes are anchored at
   Real l0[3], lx[3], ly[3];  // screen-space barycentric planes: l_i = l0 + lx dx + ly dy
   Real w[3], invW[3];        // clip w (= depth) of the vertices and its reciprocal
-  Real key0, keyX, keyY;     // depth-test key plane (larger is nearer)
   Real edgeHeight[3];        // 1 / |grad l_i|: pixels from l_i = 0 to l_i = 1; -1 for an edge
                              // inside a clipped polygon, which is no edge of the source
   float baryBound;           // bound on the barycentrics' error (docs/numerics.md)
@@ -50,45 +70,15 @@ struct SetupContext {
 // viewport inside its bounding box).
 template <typename Real>
 bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges,
-                   bool clipped, const SetupContext& ctx, TriangleSetup<Real>& s);
+                   bool clipped, const SetupContext& ctx, CoverageSetup<Real>& c, ShadeSetup<Real>& s);
 
-// Offsets of pixel (x, y) from the anchor: small integers, exact in float.
-template <typename Real>
-inline Real offsetX(const TriangleSetup<Real>& s, int x) { return Real(x - s.anchorX); }
-template <typename Real>
-inline Real offsetY(const TriangleSetup<Real>& s, int y) { return Real(y - s.anchorY); }
-
-// Screen-space barycentrics at offset (dx, dy).
-template <typename Real>
-inline void screenBarycentrics(const TriangleSetup<Real>& s, Real dx, Real dy, Real l[3]) {
-  for (int i = 0; i < 3; ++i) l[i] = s.l0[i] + s.lx[i] * dx + s.ly[i] * dy;
-}
-
-// Distance in pixels from the centre to the nearest source edge, from its screen barycentrics.
-template <typename Real>
-inline float edgeDistanceAt(const TriangleSetup<Real>& s, const Real l[3]) {
-  Real nearest = std::numeric_limits<Real>::infinity();
-  for (int i = 0; i < 3; ++i) {
-    if (s.edgeHeight[i] >= Real(0)) nearest = std::min(nearest, std::fabs(l[i]) * s.edgeHeight[i]);
-  }
-  return float(nearest);
-}
-
-// The depth-test key at offset (dx, dy) (larger is nearer).
-template <typename Real>
-inline Real depthKeyAt(const TriangleSetup<Real>& s, Real dx, Real dy) {
-  return s.key0 + s.keyX * dx + s.keyY * dy;
-}
-
-// Bound on the error of depthKeyAt (a rounding of each coefficient, of each product and of
-// each sum), turned into the relative depth difference the test cannot resolve at depth w:
-// |d key / d w| w = keyB / w.
-template <typename Real>
-inline float depthTieAt(const TriangleSetup<Real>& s, Real dx, Real dy, double unitRoundoff, double keyB,
-                        double w) {
-  const double terms = std::fabs(double(s.key0)) + std::fabs(double(s.keyX) * double(dx)) +
-                       std::fabs(double(s.keyY) * double(dy));
-  return float(5.0 * unitRoundoff * terms * w / keyB);
-}
+// The per-pixel formulas, for pixel offsets (dx, dy) from the anchor (small integers, exact in
+// float), are in tile_kernel.h, evaluated eight pixels at a time:
+//   screen barycentrics  l_i = l0_i + lx_i dx + ly_i dy
+//   depth-test key       key0 + keyX dx + keyY dy (larger is nearer)
+//   edge distance        min over source edges of |l_i| edgeHeight_i
+//   depth tie            5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB: the key's error bound
+//                        (a rounding of each coefficient, product and sum) as the relative
+//                        depth difference the test cannot resolve at depth w.
 
 }  // namespace rc

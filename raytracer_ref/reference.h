@@ -26,6 +26,10 @@ class ReferenceTracer {
   ~ReferenceTracer();
   ReferenceTracer(const ReferenceTracer&) = delete;
   ReferenceTracer& operator=(const ReferenceTracer&) = delete;
+  // Traces into `target`, writing every pixel of every channel (so a target of the same size
+  // is reused without touching new memory) and the header attributes; no RGB preview.
+  void trace(Framebuffer& target) const;
+  // trace() into a new framebuffer, plus the RGB preview.
   Framebuffer trace() const;
 
  private:

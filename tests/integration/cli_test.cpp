@@ -156,9 +156,9 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
   ASSERT_EQ(j["format_version"], 1);
   const auto& rows = j["rows"];
-  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(rows.size(), 8u);
   int defaults = 0;
-  double perspective = -1, affine = -1, dbl = -1;
+  double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3;
   for (const auto& row : rows) {
     for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
                             "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
@@ -170,7 +170,16 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     if (row["setting"] == "perspective-float-8bit") perspective = row["bary_p999_error"];
     if (row["setting"] == "affine-float-8bit") affine = row["bary_p999_error"];
     if (row["setting"] == "perspective-double-8bit") dbl = row["bary_p999_error"];
+    if (row["setting"] == "perspective-float-8bit-sse2") sse2 = row["bary_max_error"];
+    if (row["setting"] == "perspective-float-8bit-nodiag") lean = row["bary_max_error"];
   }
+  // The SSE2 kernels and the lean output write the default's bits: the same error.
+  double perspectiveMax = -1;
+  for (const auto& row : rows) {
+    if (row["setting"] == "perspective-float-8bit") perspectiveMax = row["bary_max_error"];
+  }
+  EXPECT_EQ(sse2, perspectiveMax);
+  EXPECT_EQ(lean, perspectiveMax);
   EXPECT_EQ(defaults, 1);
   EXPECT_GT(affine, 100 * perspective) << "affine must show as far less accurate";
   EXPECT_LE(dbl, perspective);
@@ -178,7 +187,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   std::string line;
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
-  EXPECT_EQ(lines, 7);  // header + 6 settings
+  EXPECT_EQ(lines, 9);  // header + 8 settings
   std::ifstream svgFile(dir / "b.svg");
   const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
   EXPECT_NE(svg.find("<svg"), std::string::npos);

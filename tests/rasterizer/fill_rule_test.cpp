@@ -6,6 +6,9 @@
 #include <vector>
 
 #include "rasterizer/coverage.h"
+#include "rasterizer/tile_kernel.h"
+
+#pragma GCC diagnostic ignored "-Wpsabi"  // vector types in the kernels inline helpers
 
 namespace rc {
 namespace {
@@ -23,14 +26,25 @@ Tri tri(double x0, double y0, double x1, double y1, double x2, double y2) {
   return {{fixed(x0), fixed(x1), fixed(x2)}, {fixed(y0), fixed(y1), fixed(y2)}};
 }
 
+// Counts per pixel centre from the kernels' coverage code, run in int64 lanes and in int32
+// lanes (exact here: the triangles span at most 40 pixels); both must give the same pixels.
 std::vector<int> coverageCounts(const std::vector<Tri>& tris) {
-  std::vector<int> counts(kSize * kSize, 0);
+  std::vector<int> wide(kSize * kSize, 0), narrow(kSize * kSize, 0);
+  const auto count = [](std::vector<int>& into) {
+    return [&into](int x, int y, const kernel::i32x8& mask) {
+      for (int k = 0; k < kernel::kLanes; ++k) {
+        if (mask[k]) ++into[y * kSize + x + k];
+      }
+    };
+  };
   for (const Tri& t : tris) {
     EdgeFunctions e;
     if (!makeEdgeFunctions(t.x, t.y, e)) continue;
-    forEachCoveredPixel(e, kBits, 0, 0, kSize - 1, kSize - 1, [&](int x, int y) { ++counts[y * kSize + x]; });
+    kernel::coverRows<std::int64_t>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(wide));
+    kernel::coverRows<std::int32_t>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(narrow));
   }
-  return counts;
+  EXPECT_EQ(wide, narrow) << "int32 and int64 lanes cover different pixels";
+  return wide;
 }
 
 // Closed-inside test without the fill rule: is the centre inside or on the triangle?

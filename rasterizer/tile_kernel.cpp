@@ -1,0 +1,44 @@
+// The tile kernels compiled twice from one source: once for the x86-64 baseline (SSE2) and
+// once with the AVX2 target attribute (per-function target, no -march flag, so the rest of
+// the program runs on any x86-64). "avx2" does not enable FMA, so no multiply-add is ever
+// contracted and both produce the same bits.
+#include "rasterizer/tile_kernel.h"
+
+// See tile_kernel.h: vectors never cross a call boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace rc::kernel {
+
+void renderTileSse2(const Input<float>& in, const Outputs& out, const TileJob& job) { renderTile(in, out, job); }
+void renderTileSse2(const Input<double>& in, const Outputs& out, const TileJob& job) { renderTile(in, out, job); }
+
+__attribute__((target("avx2"))) void renderTileAvx2(const Input<float>& in, const Outputs& out,
+                                                    const TileJob& job) {
+  renderTile(in, out, job);
+}
+__attribute__((target("avx2"))) void renderTileAvx2(const Input<double>& in, const Outputs& out,
+                                                    const TileJob& job) {
+  renderTile(in, out, job);
+}
+
+namespace {
+
+template <typename Real>
+void collect(const CoverageSetup<Real>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
+  forEachCoveredChunk(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, const i32x8& mask) {
+    for (int k = 0; k < kLanes; ++k) {
+      if (mask[k]) pixels.push_back(std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x + k));
+    }
+  });
+}
+
+}  // namespace
+
+void coveredPixelsOf(const CoverageSetup<float>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
+  collect(s, bits, pixels, width);
+}
+void coveredPixelsOf(const CoverageSetup<double>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
+  collect(s, bits, pixels, width);
+}
+
+}  // namespace rc::kernel

@@ -1,0 +1,383 @@
+// The per-tile pixel kernels: coverage + depth test into a tile-local visibility buffer, then
+// resolve (barycentrics, depth, attributes and diagnostics of each pixel's winner), eight pixels
+// of a row at a time in GCC vector extensions. The same source is compiled for SSE2 (any
+// x86-64) and for AVX2 (tile_kernel.cpp dispatches at run time); each lane runs exactly the
+// scalar formulas of setup.h and interpolate.h in the same order, without FMA, so both give
+// the same bits (tests/rasterizer: KernelIsa.*).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <emmintrin.h>
+#include <limits>
+#include <vector>
+#include <glm/glm.hpp>
+
+#include "core/channels.h"
+#include "rasterizer/coverage.h"
+#include "rasterizer/setup.h"
+
+namespace rc::kernel {
+
+constexpr int kTileSize = 64;
+constexpr int kLanes = 8;
+constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+// A set-up is named by (block << kBlockShift) | index within its block: set-ups stay in their
+// blocks (no concatenation), and the names still sort in triangle order.
+constexpr int kBlockShift = 20;
+constexpr std::uint32_t kLocalMask = (1u << kBlockShift) - 1u;
+
+struct Outputs {
+  int width;
+  std::uint32_t* id;
+  float* bary[3];
+  float* depth;
+  float* baryBound;     // the four diagnostics are null when they are not written
+  float* depthBound;
+  float* edgeDistance;
+  float* depthTie;
+  struct Attribute {
+    const float* values;  // per vertex, `components` each
+    int components;
+    float* out[4];
+  };
+  std::vector<Attribute> attributes;
+  int attributeComponents;  // sum of components
+};
+
+template <typename Real>
+struct Input {
+  const CoverageSetup<Real>* const* coverage;       // per block
+  const ShadeSetup<Real>* const* shade;             // per block
+  const glm::mat<3, 3, Real>* const* clipMaps;      // per block
+  const glm::uvec3* triangles;                      // the mesh's
+  int subpixelBits;
+  bool perspective;
+  Real tieScale;  // depth.tie = tieScale (|key0| + |keyX dx| + |keyY dy|) depth (setup.h)
+};
+
+// One tile: pixels [x0, x1] x [y0, y1], set-ups bins[0..count) in triangle order.
+struct TileJob {
+  const std::uint32_t* bins;
+  std::size_t count;
+  int x0, y0, x1, y1;
+};
+
+// Entry points, one per (precision, instruction set); tile_kernel.cpp.
+void renderTileSse2(const Input<float>&, const Outputs&, const TileJob&);
+void renderTileSse2(const Input<double>&, const Outputs&, const TileJob&);
+void renderTileAvx2(const Input<float>&, const Outputs&, const TileJob&);
+void renderTileAvx2(const Input<double>&, const Outputs&, const TileJob&);
+// Pixels covered by one set-up, for coveredPixels(); the kernels' own coverage code, SSE2.
+void coveredPixelsOf(const CoverageSetup<float>& s, int bits, std::vector<std::uint32_t>& pixels, int width);
+void coveredPixelsOf(const CoverageSetup<double>& s, int bits, std::vector<std::uint32_t>& pixels, int width);
+
+// Vector values only ever pass between always-inlined functions, so the ABI of passing them
+// (which differs with and without AVX) never matters.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#define RC_KERNEL_INLINE inline __attribute__((always_inline))
+
+typedef float f32x8 __attribute__((vector_size(32)));
+typedef double f64x8 __attribute__((vector_size(64)));
+typedef std::int32_t i32x8 __attribute__((vector_size(32)));
+typedef std::uint32_t u32x8 __attribute__((vector_size(32)));
+typedef std::int64_t i64x8 __attribute__((vector_size(64)));
+
+template <typename Real>
+struct Lanes;
+template <>
+struct Lanes<float> {
+  using V = f32x8;
+  using M = i32x8;  // comparison result of two V
+};
+template <>
+struct Lanes<double> {
+  using V = f64x8;
+  using M = i64x8;
+};
+
+template <typename T>
+RC_KERNEL_INLINE T load(const void* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <typename T>
+RC_KERNEL_INLINE void store(void* p, const T& v) { std::memcpy(p, &v, sizeof v); }
+
+RC_KERNEL_INLINE bool any(const i32x8& m) {
+  std::uint64_t q[4];
+  std::memcpy(q, &m, sizeof q);
+  return (q[0] | q[1] | q[2] | q[3]) != 0;
+}
+
+template <typename M>
+RC_KERNEL_INLINE M maskAs(const i32x8& m) { return __builtin_convertvector(m, M); }
+template <typename M>
+RC_KERNEL_INLINE i32x8 mask32(const M& m) { return __builtin_convertvector(m, i32x8); }
+
+template <typename Real>
+RC_KERNEL_INLINE typename Lanes<Real>::V iota() {
+  return typename Lanes<Real>::V{0, 1, 2, 3, 4, 5, 6, 7};
+}
+RC_KERNEL_INLINE i32x8 iota32() { return i32x8{0, 1, 2, 3, 4, 5, 6, 7}; }
+
+template <typename Real>
+RC_KERNEL_INLINE f32x8 toFloat(const typename Lanes<Real>::V& v) {
+  if constexpr (sizeof(Real) == 4) {
+    return v;
+  } else {
+    return __builtin_convertvector(v, f32x8);
+  }
+}
+
+// Exact coverage, a row chunk of eight pixels at a time. Each row's edge values E_i + bias_i
+// at the chunk's first pixel step in int64 scalars (exact, coverage.h); lane k adds k a_i 2^bits.
+// Narrow set-ups (every value below 2^31, CoverageSetup::kNarrow) take int32 lanes, the others
+// int64 lanes (values below 2^62: products below 2^61, plus at most 8 steps of 2^46).
+//
+// Calls fn(x, y, mask) for every row chunk of [xa, xb] x [ya, yb] with lanes x .. x + 7, mask
+// set where the pixel centre is inside and x + k <= xb.
+template <typename Lane, typename Fn>
+RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya, int xb, int yb, Fn&& fn) {
+  typedef Lane LaneVector __attribute__((vector_size(kLanes * sizeof(Lane))));
+  const std::int64_t step = std::int64_t(1) << bits;
+  LaneVector laneStep[3];
+  std::int64_t chunkStep[3], rowStep[3], row[3];
+  const std::int64_t px = pixelCenterFixed(xa, bits), py = pixelCenterFixed(ya, bits);
+  for (int i = 0; i < 3; ++i) {
+    const Lane a = Lane(e.a[i] * step);
+    laneStep[i] = LaneVector{0, 1, 2, 3, 4, 5, 6, 7} * a;
+    chunkStep[i] = std::int64_t(kLanes) * e.a[i] * step;
+    rowStep[i] = e.b[i] * step;
+    row[i] = e.a[i] * (px - e.ox[i]) + e.b[i] * (py - e.oy[i]) + e.bias[i];
+  }
+  for (int y = ya; y <= yb; ++y) {
+    std::int64_t chunk[3] = {row[0], row[1], row[2]};
+    for (int x = xa; x <= xb; x += kLanes) {
+      const LaneVector all = (Lane(chunk[0]) + laneStep[0]) | (Lane(chunk[1]) + laneStep[1]) |
+                             (Lane(chunk[2]) + laneStep[2]);
+      i32x8 mask;
+      if constexpr (sizeof(Lane) == 4) {
+        mask = all >= 0;  // all three non-negative
+      } else {
+        mask = __builtin_convertvector(all >= 0, i32x8);
+      }
+      mask &= iota32() + x <= xb;
+      if (any(mask)) fn(x, y, mask);
+      for (int i = 0; i < 3; ++i) chunk[i] += chunkStep[i];
+    }
+    for (int i = 0; i < 3; ++i) row[i] += rowStep[i];
+  }
+}
+
+template <typename Real, typename Fn>
+RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits, int xa, int ya, int xb, int yb,
+                                          Fn&& fn) {
+  if (c.flags & CoverageSetup<Real>::kNarrow) {
+    coverRows<std::int32_t>(c.edges(), bits, xa, ya, xb, yb, fn);
+  } else {
+    coverRows<std::int64_t>(c.edges(), bits, xa, ya, xb, yb, fn);
+  }
+}
+
+// Everything written for the pixels of one winner, for the eight lanes of a chunk.
+struct Resolved {
+  f32x8 bary[3], depth, edgeDistance, depthTie;
+};
+
+template <typename Real>
+RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name, int x, int y,
+                                   Resolved& r, float* attributes) {
+  using V = typename Lanes<Real>::V;
+  const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+  const ShadeSetup<Real>& s = in.shade[name >> kBlockShift][name & kLocalMask];
+  const V dx = Real(x - c.anchorX) + iota<Real>();  // small integers: exact
+  const Real dy = Real(y - c.anchorY);
+  V l[3];
+  for (int i = 0; i < 3; ++i) l[i] = s.l0[i] + s.lx[i] * dx + s.ly[i] * dy;
+  V b[3], depth;
+  if (in.perspective) {  // interpolate.h: perspectiveCorrect
+    const V q0 = l[0] * s.invW[0], q1 = l[1] * s.invW[1], q2 = l[2] * s.invW[2];
+    const V inv = Real(1) / (q0 + q1 + q2);
+    b[0] = q0 * inv, b[1] = q1 * inv, b[2] = q2 * inv;
+    depth = (l[0] + l[1] + l[2]) * inv;
+  } else {  // interpolate.h: affineWeights
+    const V inv = Real(1) / (l[0] + l[1] + l[2]);
+    b[0] = l[0] * inv, b[1] = l[1] * inv, b[2] = l[2] * inv;
+    depth = b[0] * s.w[0] + b[1] * s.w[1] + b[2] * s.w[2];
+  }
+  if (s.clipMap >= 0) {  // sub-triangle -> source triangle, in glm's mat3 * vec3 order
+    const glm::mat<3, 3, Real>& m = in.clipMaps[name >> kBlockShift][s.clipMap];
+    const V c0 = m[0][0] * b[0] + m[1][0] * b[1] + m[2][0] * b[2];
+    const V c1 = m[0][1] * b[0] + m[1][1] * b[1] + m[2][1] * b[2];
+    const V c2 = m[0][2] * b[0] + m[1][2] * b[1] + m[2][2] * b[2];
+    b[0] = c0, b[1] = c1, b[2] = c2;
+  }
+  for (int i = 0; i < 3; ++i) r.bary[i] = toFloat<Real>(b[i]);
+  r.depth = toFloat<Real>(depth);
+  if (out.edgeDistance) {
+    V nearest = std::numeric_limits<Real>::infinity() + V{};  // over the source's edges
+    for (int i = 0; i < 3; ++i) {
+      if (s.edgeHeight[i] < Real(0)) continue;
+      const V d = (l[i] < Real(0) ? -l[i] : l[i]) * s.edgeHeight[i];
+      nearest = d < nearest ? d : nearest;
+    }
+    r.edgeDistance = toFloat<Real>(nearest);
+    // The depth tie (setup.h), in Real: tieScale carries the rounding of this evaluation.
+    const V kx = c.keyX * dx;
+    const Real ky = std::fabs(c.keyY * dy);
+    const V terms = std::fabs(c.key0) + (kx < Real(0) ? -kx : kx) + ky;
+    r.depthTie = toFloat<Real>(in.tieScale * terms * depth);
+  }
+  const glm::uvec3& tri = in.triangles[s.triangle];
+  int k = 0;
+  for (const Outputs::Attribute& a : out.attributes) {
+    const float* v0 = a.values + std::size_t(tri.x) * a.components;
+    const float* v1 = a.values + std::size_t(tri.y) * a.components;
+    const float* v2 = a.values + std::size_t(tri.z) * a.components;
+    for (int j = 0; j < a.components; ++j, ++k) {
+      store(attributes + kLanes * k, toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j])));
+    }
+  }
+}
+
+// Resolve writes each tile row into a small staging row per plane (in L1), then copies each
+// plane's row out in one go: with non-temporal stores (SSE's movntdq, in every x86-64) when
+// the destination is 16-byte aligned. The planes are written once and not read back in this
+// frame, so skipping the read-for-ownership halves the memory traffic, most of a frame's
+// cost; copying plane by plane keeps whole cache lines together for the write-combining
+// buffers. renderTile ends with a store fence.
+RC_KERNEL_INLINE void copyRowOut(std::uint32_t* to, const std::uint32_t* from, int n) {
+  int k = 0;
+  if ((reinterpret_cast<std::uintptr_t>(to) & 15u) == 0) {
+    for (; k + 4 <= n; k += 4) {
+      _mm_stream_si128(reinterpret_cast<__m128i*>(to + k), _mm_loadu_si128(reinterpret_cast<const __m128i*>(from + k)));
+    }
+  }
+  for (; k < n; ++k) to[k] = from[k];
+}
+
+template <typename Real>
+RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, const TileJob& job) {
+  using V = typename Lanes<Real>::V;
+  using M = typename Lanes<Real>::M;
+  constexpr int kPixels = kTileSize * kTileSize + kLanes;  // + a chunk of slack past the end
+  alignas(64) std::uint32_t winner[kPixels];
+  alignas(64) Real nearest[kPixels];  // depth key of the winner: larger is nearer
+  for (int i = 0; i < kPixels; ++i) winner[i] = kEmpty;
+  for (int i = 0; i < kPixels; ++i) nearest[i] = -std::numeric_limits<Real>::infinity();
+
+  // Coverage and depth test, set-ups in triangle order; a tie keeps the earlier triangle.
+  for (std::size_t n = 0; n < job.count; ++n) {
+    const std::uint32_t name = job.bins[n];
+    const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+    const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
+    const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
+    const V dx0 = Real(xa - c.anchorX) + iota<Real>();
+    forEachCoveredChunk(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, const i32x8& mask) {
+      const V dx = dx0 + Real(x - xa);  // small integers: exact
+      const V z = c.key0 + c.keyX * dx + c.keyY * Real(y - c.anchorY);
+      Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
+      std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
+      const V old = load<V>(nearestAt);
+      const M nearer = maskAs<M>(mask) & (z > old);
+      const i32x8 update = mask32(nearer);
+      if (!any(update)) return;
+      store(nearestAt, nearer ? z : old);
+      const u32x8 w = load<u32x8>(winnerAt);
+      store(winnerAt, update ? (u32x8{} + name) : w);
+    });
+  }
+
+  // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.
+  const int components = out.attributeComponents;
+  std::vector<float> attributes(std::size_t(components) * 2 * kLanes);  // plain floats: a
+  float* chunkAttributes = attributes.data();  // std::vector of vector types is not reliably
+  float* winnerAttributes = chunkAttributes + std::size_t(components) * kLanes;  // over-aligned
+  const bool diagnostics = out.edgeDistance != nullptr;
+  // Staging rows: id, b0..b2, depth, the four diagnostics, then the attribute components.
+  constexpr int kFixedPlanes = 9, kStride = kTileSize + kLanes;
+  std::vector<std::uint32_t> stage(std::size_t(kFixedPlanes + components) * kStride);
+  std::vector<std::uint32_t*> planes = {out.id,
+                                        reinterpret_cast<std::uint32_t*>(out.bary[0]),
+                                        reinterpret_cast<std::uint32_t*>(out.bary[1]),
+                                        reinterpret_cast<std::uint32_t*>(out.bary[2]),
+                                        reinterpret_cast<std::uint32_t*>(out.depth),
+                                        reinterpret_cast<std::uint32_t*>(out.baryBound),
+                                        reinterpret_cast<std::uint32_t*>(out.depthBound),
+                                        reinterpret_cast<std::uint32_t*>(out.edgeDistance),
+                                        reinterpret_cast<std::uint32_t*>(out.depthTie)};
+  for (const Outputs::Attribute& a : out.attributes) {
+    for (int j = 0; j < a.components; ++j) planes.push_back(reinterpret_cast<std::uint32_t*>(a.out[j]));
+  }
+  for (int y = job.y0; y <= job.y1; ++y) {
+    for (int x = job.x0; x <= job.x1; x += kLanes) {
+      const int lanes = std::min(kLanes, job.x1 - x + 1);
+      const u32x8 w = load<u32x8>(winner + (y - job.y0) * kTileSize + (x - job.x0));
+      const i32x8 valid = (iota32() < lanes) & (w != kEmpty);
+      Resolved r{};
+      u32x8 id;
+      f32x8 baryBound, depthBound;
+      if (lanes == kLanes && !any(w != w[0]) && w[0] != kEmpty) {  // one winner: no blending
+        const ShadeSetup<Real>& s = in.shade[w[0] >> kBlockShift][w[0] & kLocalMask];
+        resolveLanes(in, out, w[0], x, y, r, chunkAttributes);
+        id = u32x8{} + s.triangle;
+        baryBound = f32x8{} + s.baryBound;
+        depthBound = f32x8{} + s.depthBound;
+      } else {
+        id = u32x8{} + channels::kNoTriangle;
+        baryBound = depthBound = f32x8{};
+        std::fill_n(chunkAttributes, std::size_t(components) * kLanes, 0.0f);
+        i32x8 remaining = valid;
+        while (any(remaining)) {
+          int first = 0;
+          while (!remaining[first]) ++first;
+          const std::uint32_t name = w[first];
+          const i32x8 mine = remaining & (w == name);
+          remaining &= ~mine;
+          Resolved own{};
+          resolveLanes(in, out, name, x, y, own, winnerAttributes);
+          const ShadeSetup<Real>& s = in.shade[name >> kBlockShift][name & kLocalMask];
+          id = mine ? u32x8{} + s.triangle : id;
+          for (int i = 0; i < 3; ++i) r.bary[i] = mine ? own.bary[i] : r.bary[i];
+          r.depth = mine ? own.depth : r.depth;
+          r.edgeDistance = mine ? own.edgeDistance : r.edgeDistance;
+          r.depthTie = mine ? own.depthTie : r.depthTie;
+          baryBound = mine ? f32x8{} + s.baryBound : baryBound;
+          depthBound = mine ? f32x8{} + s.depthBound : depthBound;
+          for (int k = 0; k < components; ++k) {
+            float* into = chunkAttributes + kLanes * k;
+            store(into, mine ? load<f32x8>(winnerAttributes + kLanes * k) : load<f32x8>(into));
+          }
+        }
+      }
+      std::uint32_t* at = stage.data() + (x - job.x0);
+      store(at, id);
+      for (int i = 0; i < 3; ++i) store(at + (1 + i) * kStride, r.bary[i]);
+      store(at + 4 * kStride, r.depth);
+      if (diagnostics) {
+        store(at + 5 * kStride, baryBound);
+        store(at + 6 * kStride, depthBound);
+        store(at + 7 * kStride, r.edgeDistance);
+        store(at + 8 * kStride, r.depthTie);
+      }
+      for (int k = 0; k < components; ++k) {
+        std::memcpy(at + (kFixedPlanes + k) * kStride, chunkAttributes + kLanes * k, sizeof(f32x8));
+      }
+    }
+    const std::size_t rowStart = std::size_t(y) * out.width + job.x0;
+    const int n = job.x1 - job.x0 + 1;
+    for (int plane = 0; plane < kFixedPlanes + components; ++plane) {
+      if (planes[plane]) copyRowOut(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+    }
+  }
+  _mm_sfence();  // the non-temporal stores are visible before the tile counts as done
+}
+
+#pragma GCC diagnostic pop
+
+}  // namespace rc::kernel
