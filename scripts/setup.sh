@@ -17,6 +17,7 @@ packages=(
   libfreetype-dev fonts-dejavu-core  # legend text in PNG heatmaps
   libgtest-dev                   # the test suite
   libgmp-dev                     # exact rational oracle of the tests (tests/oracle)
+  libbenchmark-dev               # Google Benchmark microbenchmarks of the kernels (bench/)
 )
 
 if [[ "${1:-}" == "--test" ]]; then
