@@ -8,6 +8,7 @@
 #include "raytracer_ref/reference.h"
 #include "scenes/registry.h"
 #include "tests/analytic.h"
+#include "tests/same_bits.h"
 #include "tests/test_scenes.h"
 
 namespace rc {
@@ -88,16 +89,7 @@ TEST(Reference, OutputBitsAreIdenticalForOneAndTwoThreads) {
   ReferenceOptions two;
   two.threads = 2;
   const Framebuffer other = renderReference(scene, two);
-  for (std::size_t c = 0; c < one.channels().size(); ++c) {
-    const Channel& a = one.channels()[c];
-    const Channel& b = other.channels()[c];
-    ASSERT_EQ(a.name, b.name);
-    if (a.type == ChannelType::kUint) {
-      EXPECT_EQ(0, std::memcmp(a.uints.data(), b.uints.data(), one.pixelCount() * 4)) << a.name;
-    } else {
-      EXPECT_EQ(0, std::memcmp(a.floats.data(), b.floats.data(), one.pixelCount() * 4)) << a.name;
-    }
-  }
+  EXPECT_EQ(testing::differingChannels(one, other), std::vector<std::string>{});
 }
 
 }  // namespace
