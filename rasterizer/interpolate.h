@@ -2,30 +2,33 @@
 // (shared/seeds 000, 001). With screen-space weights l_i of a point and clip w_i of the
 // vertices, the true (3-D) barycentrics are b_i = (l_i / w_i) / sum_j (l_j / w_j), and the
 // depth (= w) there is sum_j l_j / sum_j (l_j / w_j). Affine mode uses l_i as they are.
+//
+// Value is a scalar or a vector of lanes (tile_kernel.h evaluates eight pixels at once through
+// these very functions); Scalar is the per-vertex type. Always inlined: the kernels' vector
+// values never cross a call between code compiled for different instruction sets.
 #pragma once
 
 namespace rc {
 
-template <typename Real>
+template <typename Value>
 struct Recovered {
-  Real b[3];
-  Real depth;
+  Value b[3];
+  Value depth;
 };
 
 // l need not sum to exactly 1 (each l_i is its own edge function over the area); dividing by
 // the sums makes the result independent of that rounding.
-template <typename Real>
-inline Recovered<Real> perspectiveCorrect(const Real l[3], const Real invW[3]) {
-  const Real q0 = l[0] * invW[0], q1 = l[1] * invW[1], q2 = l[2] * invW[2];
-  const Real sumQ = q0 + q1 + q2;
-  const Real inv = Real(1) / sumQ;
+template <typename Value, typename Scalar>
+inline __attribute__((always_inline)) Recovered<Value> perspectiveCorrect(const Value l[3], const Scalar invW[3]) {
+  const Value q0 = l[0] * invW[0], q1 = l[1] * invW[1], q2 = l[2] * invW[2];
+  const Value inv = Scalar(1) / (q0 + q1 + q2);
   return {{q0 * inv, q1 * inv, q2 * inv}, (l[0] + l[1] + l[2]) * inv};
 }
 
-template <typename Real>
-inline Recovered<Real> affineWeights(const Real l[3], const Real w[3]) {
-  const Real inv = Real(1) / (l[0] + l[1] + l[2]);
-  const Real b0 = l[0] * inv, b1 = l[1] * inv, b2 = l[2] * inv;
+template <typename Value, typename Scalar>
+inline __attribute__((always_inline)) Recovered<Value> affineWeights(const Value l[3], const Scalar w[3]) {
+  const Value inv = Scalar(1) / (l[0] + l[1] + l[2]);
+  const Value b0 = l[0] * inv, b1 = l[1] * inv, b2 = l[2] * inv;
   return {{b0, b1, b2}, b0 * w[0] + b1 * w[1] + b2 * w[2]};
 }
 

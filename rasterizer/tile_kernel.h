@@ -1,9 +1,9 @@
 // The per-tile pixel kernels: coverage + depth test into a tile-local visibility buffer, then
 // resolve (barycentrics, depth, attributes and diagnostics of each pixel's winner), eight pixels
 // of a row at a time in GCC vector extensions. The same source is compiled for SSE2 (any
-// x86-64) and for AVX2 (tile_kernel.cpp dispatches at run time); each lane runs exactly the
-// scalar formulas of setup.h and interpolate.h in the same order, without FMA, so both give
-// the same bits (tests/rasterizer: KernelIsa.*).
+// x86-64) and for AVX2 (tile_kernel.cpp dispatches at run time); each lane runs the formulas
+// of setup.h and interpolate.h in the same order, without FMA, so both give the same bits
+// (Rasterizer.OutputBitsAreIdenticalForSse2AndAvx2Kernels).
 #pragma once
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 
 #include "core/channels.h"
 #include "rasterizer/coverage.h"
+#include "rasterizer/interpolate.h"
 #include "rasterizer/setup.h"
 
 namespace rc::kernel {
@@ -199,17 +200,9 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   const Real dy = Real(y - c.anchorY);
   V l[3];
   for (int i = 0; i < 3; ++i) l[i] = s.l0[i] + s.lx[i] * dx + s.ly[i] * dy;
-  V b[3], depth;
-  if (in.perspective) {  // interpolate.h: perspectiveCorrect
-    const V q0 = l[0] * s.invW[0], q1 = l[1] * s.invW[1], q2 = l[2] * s.invW[2];
-    const V inv = Real(1) / (q0 + q1 + q2);
-    b[0] = q0 * inv, b[1] = q1 * inv, b[2] = q2 * inv;
-    depth = (l[0] + l[1] + l[2]) * inv;
-  } else {  // interpolate.h: affineWeights
-    const V inv = Real(1) / (l[0] + l[1] + l[2]);
-    b[0] = l[0] * inv, b[1] = l[1] * inv, b[2] = l[2] * inv;
-    depth = b[0] * s.w[0] + b[1] * s.w[1] + b[2] * s.w[2];
-  }
+  const Recovered<V> recovered = in.perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
+  V b[3] = {recovered.b[0], recovered.b[1], recovered.b[2]};
+  const V depth = recovered.depth;
   if (s.clipMap >= 0) {  // sub-triangle -> source triangle, in glm's mat3 * vec3 order
     const glm::mat<3, 3, Real>& m = in.clipMaps[name >> kBlockShift][s.clipMap];
     const V c0 = m[0][0] * b[0] + m[1][0] * b[1] + m[2][0] * b[2];
