@@ -27,25 +27,52 @@ struct DoubleHit {
 // lengths, so with L the longest edge: |db| <= 16 u |d| L (|T| + 3 L) / |det|, a bound that
 // grows with the triangle's conditioning L^2 / 2A, with 1 / |cos(ray, normal)| and with the
 // distance |T| relative to L, exactly as the derivation in docs/numerics.md.
+//
+// Everything but P, det, b1, b2, |d| and the terms with det depends on the triangle and the
+// ray's origin alone: TriangleFrame holds those parts, so that the many rays from one origin
+// (a camera's) that hit one triangle compute them once. Splitting changes no operation or
+// its order, so the result is the same to the bit.
+struct TriangleFrame {
+  glm::dvec3 e1, e2, T, Q;
+  double tNumerator;  // e2 . Q
+  double L;           // longest edge
+  double lengthT, lengthE1, lengthE2;
+  double depthBoundT;  // |e2| |T| |e1| / |e2 . Q|: the depth bound's part without det
+};
+
+inline TriangleFrame triangleFrame(const glm::dvec3& o, const glm::dvec3& v0, const glm::dvec3& v1,
+                                   const glm::dvec3& v2) {
+  TriangleFrame f;
+  f.e1 = v1 - v0;
+  f.e2 = v2 - v0;
+  f.T = o - v0;
+  f.Q = glm::cross(f.T, f.e1);
+  f.tNumerator = glm::dot(f.e2, f.Q);
+  f.L = std::max({glm::length(f.e1), glm::length(f.e2), glm::length(f.e2 - f.e1)});
+  f.lengthT = glm::length(f.T);
+  f.lengthE1 = glm::length(f.e1);
+  f.lengthE2 = glm::length(f.e2);
+  f.depthBoundT = f.lengthE2 * f.lengthT * f.lengthE1 / std::fabs(f.tNumerator);
+  return f;
+}
+
+inline DoubleHit intersectRay(const TriangleFrame& f, const glm::dvec3& d) {
+  constexpr double u = 0x1p-53;
+  const glm::dvec3 P = glm::cross(d, f.e2);
+  const double det = glm::dot(f.e1, P);
+  if (!(det != 0.0) || !std::isfinite(det)) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
+  const double inv = 1.0 / det;
+  const double b1 = glm::dot(f.T, P) * inv;
+  const double b2 = glm::dot(d, f.Q) * inv;
+  const double lengthD = glm::length(d);
+  const double baryBound = 16.0 * u * lengthD * f.L * (f.lengthT + 3.0 * f.L) / std::fabs(det);
+  const double depthBound = 8.0 * u * (f.depthBoundT + f.lengthE1 * lengthD * f.lengthE2 / std::fabs(det));
+  return {true, {1.0 - b1 - b2, b1, b2}, f.tNumerator * inv, baryBound, depthBound};
+}
+
 inline DoubleHit intersectRayTriangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& v0,
                                       const glm::dvec3& v1, const glm::dvec3& v2) {
-  constexpr double u = 0x1p-53;
-  const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0;
-  const glm::dvec3 P = glm::cross(d, e2);
-  const double det = glm::dot(e1, P);
-  if (!(det != 0.0) || !std::isfinite(det)) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
-  const glm::dvec3 T = o - v0;
-  const double inv = 1.0 / det;
-  const double b1 = glm::dot(T, P) * inv;
-  const glm::dvec3 Q = glm::cross(T, e1);
-  const double b2 = glm::dot(d, Q) * inv;
-  const double tNumerator = glm::dot(e2, Q);
-  const double L = std::max({glm::length(e1), glm::length(e2), glm::length(e2 - e1)});
-  const double lengthD = glm::length(d), lengthT = glm::length(T);
-  const double baryBound = 16.0 * u * lengthD * L * (lengthT + 3.0 * L) / std::fabs(det);
-  const double depthBound = 8.0 * u * (glm::length(e2) * lengthT * glm::length(e1) / std::fabs(tNumerator) +
-                                       glm::length(e1) * lengthD * glm::length(e2) / std::fabs(det));
-  return {true, {1.0 - b1 - b2, b1, b2}, tNumerator * inv, baryBound, depthBound};
+  return intersectRay(triangleFrame(o, v0, v1, v2), d);
 }
 
 }  // namespace rc
