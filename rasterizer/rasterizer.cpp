@@ -63,6 +63,16 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 constexpr std::size_t kTrianglesPerBlock = 8192;
+
+// Asks for the cache line at p in a writable state ahead of the stores. The set-up arrays are
+// rewritten every frame, and many of their lines were last read by the other core's tiles, so
+// a store must first take the line from that core (about 110 ns between this machine's two
+// cores). Measured: set-up on one thread took twice as long when the tiles before it had run
+// on two threads as when they had run on one; this hint took a tenth off at 100k triangles. prefetchw is a no-op hint on x86-64 CPUs that lack it, and a
+// prefetch never faults, so p may lie past the end of the array. (Written as asm: GCC drops
+// __builtin_prefetch's write hint, instruction and all, outside a prfchw target.)
+inline void prefetchForWrite(const char* p) { asm volatile("prefetchw (%0)" : : "r"(p)); }
+constexpr std::size_t kWriteAhead = 1024;  // bytes: about a dozen set-ups
 // Names are (block << 20) | index (tile_kernel.h): a block's up to 7 sub-triangles per
 // triangle must stay below 2^20, and block numbers below 4095 so no name equals kEmpty.
 constexpr std::size_t kMaxBlocks = 4094;
@@ -184,6 +194,8 @@ struct Pipeline {
     if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, c, s)) return;
     s.triangle = triangle;
     s.clipMap = clipMap;
+    prefetchForWrite(reinterpret_cast<const char*>(block.coverage.data() + block.coverage.size()) + kWriteAhead);
+    prefetchForWrite(reinterpret_cast<const char*>(block.shade.data() + block.shade.size()) + kWriteAhead);
     block.coverage.push_back(c);
     block.shade.push_back(s);
   }

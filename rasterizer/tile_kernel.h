@@ -23,6 +23,9 @@ namespace rc::kernel {
 
 constexpr int kTileSize = 64;
 constexpr int kLanes = 8;
+// The coverage pass prefetches the set-up this many bins ahead: a tile's bins skip through its
+// blocks' arrays, which the hardware prefetcher does not follow (7% of the tiles' time at 1M).
+constexpr std::size_t kPrefetchAhead = 8;
 constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
 // A set-up is named by (block << kBlockShift) | index within its block: set-ups stay in their
 // blocks (no concatenation), and the names still sort in triangle order.
@@ -267,6 +270,10 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   // Coverage and depth test, set-ups in triangle order; a tie keeps the earlier triangle.
   for (std::size_t n = 0; n < job.count; ++n) {
     const std::uint32_t name = job.bins[n];
+    if (n + kPrefetchAhead < job.count) {
+      const std::uint32_t ahead = job.bins[n + kPrefetchAhead];
+      __builtin_prefetch(&in.coverage[ahead >> kBlockShift][ahead & kLocalMask]);
+    }
     const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
     const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
     const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
