@@ -69,10 +69,13 @@ constexpr std::size_t kTrianglesPerBlock = 8192;
 // a store must first take the line from that core (about 110 ns between this machine's two
 // cores). Measured: set-up on one thread took twice as long when the tiles before it had run
 // on two threads as when they had run on one; this hint took a tenth off at 100k triangles. prefetchw is a no-op hint on x86-64 CPUs that lack it, and a
-// prefetch never faults, so p may lie past the end of the array. (Written as asm: GCC drops
-// __builtin_prefetch's write hint, instruction and all, outside a prfchw target.)
-inline void prefetchForWrite(const char* p) { asm volatile("prefetchw (%0)" : : "r"(p)); }
-constexpr std::size_t kWriteAhead = 1024;  // bytes: about a dozen set-ups
+// prefetch never faults, so the address may lie past the end of the array; it is formed as an
+// integer, since a pointer there (or off a null one) would be undefined. (Written as asm: GCC
+// drops __builtin_prefetch's write hint, instruction and all, outside a prfchw target.)
+constexpr std::uintptr_t kWriteAhead = 1024;  // bytes: about a dozen set-ups
+inline void prefetchForWriteAhead(const void* end) {
+  asm volatile("prefetchw (%0)" : : "r"(reinterpret_cast<std::uintptr_t>(end) + kWriteAhead));
+}
 // Names are (block << 20) | index (tile_kernel.h): a block's up to 7 sub-triangles per
 // triangle must stay below 2^20, and block numbers below 4095 so no name equals kEmpty.
 constexpr std::size_t kMaxBlocks = 4094;
@@ -194,8 +197,8 @@ struct Pipeline {
     if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, c, s)) return;
     s.triangle = triangle;
     s.clipMap = clipMap;
-    prefetchForWrite(reinterpret_cast<const char*>(block.coverage.data() + block.coverage.size()) + kWriteAhead);
-    prefetchForWrite(reinterpret_cast<const char*>(block.shade.data() + block.shade.size()) + kWriteAhead);
+    prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
+    prefetchForWriteAhead(block.shade.data() + block.shade.size());
     block.coverage.push_back(c);
     block.shade.push_back(s);
   }
