@@ -64,11 +64,12 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 constexpr std::size_t kTrianglesPerBlock = 8192;
 
-// Asks for the cache line at p in a writable state ahead of the stores. The set-up arrays are
-// rewritten every frame, and many of their lines were last read by the other core's tiles, so
-// a store must first take the line from that core (about 110 ns between this machine's two
-// cores). Measured: set-up on one thread took twice as long when the tiles before it had run
-// on two threads as when they had run on one; this hint took a tenth off at 100k triangles. prefetchw is a no-op hint on x86-64 CPUs that lack it, and a
+// Asks for the cache line kWriteAhead bytes past `end` in a writable state ahead of the
+// stores. The set-up arrays are rewritten every frame, and many of their lines were last read
+// by the other core's tiles, so a store must first take the line from that core (about 110 ns
+// between this machine's two cores). Measured: set-up on one thread took twice as long when
+// the tiles before it had run on two threads as when they had run on one; this hint took a
+// tenth off at 100k triangles. prefetchw is a no-op hint on x86-64 CPUs that lack it, and a
 // prefetch never faults, so the address may lie past the end of the array; it is formed as an
 // integer, since a pointer there (or off a null one) would be undefined. (Written as asm: GCC
 // drops __builtin_prefetch's write hint, instruction and all, outside a prfchw target.)
