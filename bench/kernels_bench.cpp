@@ -95,20 +95,24 @@ BENCHMARK(BM_Coverage<std::int64_t>)->Arg(64)->Arg(200);
 // test dominate) or one triangle covering it (interpolation dominates), with an attribute.
 template <typename Real>
 struct TileFixture {
+  SetupContext ctx;
   std::vector<CoverageSetup<Real>> coverage;
-  std::vector<ShadeSetup<Real>> shade;
+  std::vector<SetupSource> source;
   std::vector<std::uint32_t> bins;
   std::vector<glm::uvec3> triangles;
+  std::vector<glm::dvec4> vertexClip;
+  std::vector<glm::dvec2> vertexRaster;
   std::vector<float> uv;
   std::vector<float> planes;
   kernel::Outputs out{};
   const CoverageSetup<Real>* coverageBlock[1];
-  const ShadeSetup<Real>* shadeBlock[1];
+  const SetupSource* sourceBlock[1];
+  const ClippedTriangle<Real>* clippedBlock[1] = {nullptr};
   kernel::Input<Real> in{};
 
-  TileFixture(int count, double size, bool perspective, bool diagnostics) {
+  TileFixture(int count, double size, bool perspective, bool diagnostics)
+      : ctx(context(sizeof(Real) == 4 ? 0x1p-24 : 0x1p-53)) {
     const Triangles t = count == 1 ? oneBigTriangle() : randomTriangles(count, size, 2);
-    const SetupContext ctx = context(sizeof(Real) == 4 ? 0x1p-24 : 0x1p-53);
     for (int i = 0; i < count; ++i) {
       // Squeeze every triangle into the first tile.
       glm::dvec2 r[3];
@@ -119,16 +123,16 @@ struct TileFixture {
         c[k] = {(2.0 * r[k].x / kWidth - 1.0) * w, (1.0 - 2.0 * r[k].y / kHeight) * w, 0.0, w};
       }
       CoverageSetup<Real> cs;
-      ShadeSetup<Real> ss;
-      if (!setupTriangle(c, r, 0u, false, ctx, cs, ss)) continue;
-      ss.triangle = std::uint32_t(triangles.size());
-      ss.clipMap = -1;
+      if (!setupCoverage(c, r, ctx, cs)) continue;
       bins.push_back(std::uint32_t(coverage.size()));
       coverage.push_back(cs);
-      shade.push_back(ss);
-      triangles.push_back({0u, 1u, 2u});
+      source.push_back({std::uint32_t(triangles.size()), -1});
+      const auto first = std::uint32_t(vertexClip.size());
+      triangles.push_back({first, first + 1, first + 2});
+      vertexClip.insert(vertexClip.end(), c, c + 3);
+      vertexRaster.insert(vertexRaster.end(), r, r + 3);
     }
-    uv = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f};
+    for (std::size_t v = 0; v < vertexClip.size(); v += 3) uv.insert(uv.end(), {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f});
     planes.assign(std::size_t(14) * kWidth * 64, 0.0f);
     out.width = kWidth;
     float* p = planes.data();
@@ -140,10 +144,14 @@ struct TileFixture {
     out.attributes.push_back({uv.data(), 2, {next(), next()}});
     out.attributeComponents = 2;
     coverageBlock[0] = coverage.data();
-    shadeBlock[0] = shade.data();
+    sourceBlock[0] = source.data();
     in.coverage = coverageBlock;
-    in.shade = shadeBlock;
+    in.source = sourceBlock;
+    in.clipped = clippedBlock;
     in.triangles = triangles.data();
+    in.vertexClip = vertexClip.data();
+    in.vertexRaster = vertexRaster.data();
+    in.context = &ctx;
     in.subpixelBits = kBits;
     in.perspective = perspective;
     in.tieScale = Real(5.0 * ctx.unitRoundoff);
@@ -190,18 +198,27 @@ BENCHMARK(BM_Tile<float, true>) RC_TILE_ARGS;
 BENCHMARK(BM_Tile<double, false>) RC_TILE_ARGS;
 BENCHMARK(BM_Tile<double, true>) RC_TILE_ARGS;
 
-// Whole frames of the scalable scene at 1920x1080 with the default settings, all threads.
+// Whole frames of the scalable scene at 1920x1080 with the default settings, on 1 or 2 threads
+// (the second argument), with the last frame's per-stage times.
 void BM_Frame(benchmark::State& state) {
   const Scene scene = makeBuiltinScene("blob:tris=" + std::to_string(state.range(0)));
-  Rasterizer rasterizer{RasterOptions{}};
+  RasterOptions options;
+  options.threads = int(state.range(1));
+  Rasterizer rasterizer{options};
   Framebuffer fb;
   rasterizer.render(scene, fb);
   for (auto _ : state) rasterizer.render(scene, fb);
   state.SetItemsProcessed(state.iterations() * std::int64_t(scene.mesh.triangleCount()));
-  state.counters["setup_ms"] = rasterizer.stageTimes().setupMs;
-  state.counters["tiles_ms"] = rasterizer.stageTimes().tilesMs;
+  const StageTimes& t = rasterizer.stageTimes();
+  state.counters["transform_ms"] = t.transformMs;
+  state.counters["setup_ms"] = t.setupMs;
+  state.counters["bin_ms"] = t.binMs;
+  state.counters["tiles_ms"] = t.tilesMs;
 }
-BENCHMARK(BM_Frame)->Arg(1000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Frame)
+    ->ArgsProduct({{1000, 100000, 1000000}, {2, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace rc

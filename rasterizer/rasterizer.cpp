@@ -85,8 +85,8 @@ constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockS
 template <typename Real>
 struct SetupBlock {
   std::vector<CoverageSetup<Real>> coverage;
-  std::vector<ShadeSetup<Real>> shade;
-  std::vector<glm::mat<3, 3, Real>> clipMaps;  // columns: source barycentrics of sub-vertices
+  std::vector<SetupSource> source;                // per set-up, for the tiles' setupShade
+  std::vector<ClippedTriangle<Real>> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
 };
 
@@ -98,8 +98,8 @@ struct Frame {
   std::vector<double> largest;   // per transform block: max |world coordinate|, at least 1
   std::vector<SetupBlock<Real>> blocks;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
-  std::vector<const ShadeSetup<Real>*> blockShade;
-  std::vector<const glm::mat<3, 3, Real>*> blockClipMaps;
+  std::vector<const SetupSource*> blockSource;
+  std::vector<const ClippedTriangle<Real>*> blockClipped;
   std::vector<std::size_t> binStart;  // per tile + 1
   std::vector<std::uint32_t> binned;  // set-up names, tile by tile
 };
@@ -191,17 +191,15 @@ struct Pipeline {
     return {scene.camera.rasterXFromNdc(c.x / c.w), scene.camera.rasterYFromNdc(c.y / c.w)};
   }
 
+  // Only the coverage half of the set-up runs here; the tiles run setupShade for the set-ups
+  // that win a pixel, from the same inputs (the frame's vertex arrays, or `clipped`).
   void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3], const glm::dvec2 raster[3],
-            int clipMap, unsigned innerEdges) const {
+            int clipped) const {
     CoverageSetup<Real> c;
-    ShadeSetup<Real> s;
-    if (!setupTriangle(sub, raster, innerEdges, clipMap >= 0, context, c, s)) return;
-    s.triangle = triangle;
-    s.clipMap = clipMap;
+    if (!setupCoverage(sub, raster, context, c)) return;
     prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
-    prefetchForWriteAhead(block.shade.data() + block.shade.size());
     block.coverage.push_back(c);
-    block.shade.push_back(s);
+    block.source.push_back({triangle, clipped});
   }
 
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
@@ -215,7 +213,7 @@ struct Pipeline {
       const auto id = static_cast<std::uint32_t>(t);
       if ((c0 | c1 | c2) == 0) {
         const glm::dvec2 raster[3] = {frame.raster[tri.x], frame.raster[tri.y], frame.raster[tri.z]};
-        emit(block, id, v, raster, -1, 0u);
+        emit(block, id, v, raster, -1);
         continue;
       }
       const ClipVertex<double> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
@@ -224,12 +222,14 @@ struct Pipeline {
       for (int k = 1; k + 1 < n; ++k) {  // fan around poly[0]
         const glm::dvec4 sub[3] = {poly[0].clip, poly[k].clip, poly[k + 1].clip};
         const glm::dvec2 raster[3] = {rasterOf(sub[0]), rasterOf(sub[1]), rasterOf(sub[2])};
-        block.clipMaps.push_back(
-            glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)));
         // The fan's diagonals poly[0]-poly[k] (opposite vertex 2) and poly[k+1]-poly[0]
         // (opposite vertex 1) run inside the polygon, except its first and last edges.
         const unsigned inner = (k > 1 ? 4u : 0u) | (k + 2 < n ? 2u : 0u);
-        emit(block, id, sub, raster, int(block.clipMaps.size()) - 1, inner);
+        block.clipped.push_back({glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)),
+                                 {sub[0], sub[1], sub[2]},
+                                 {raster[0], raster[1], raster[2]},
+                                 inner});
+        emit(block, id, sub, raster, int(block.clipped.size()) - 1);
       }
     }
   }
@@ -251,8 +251,8 @@ struct Pipeline {
     parallelFor(blocks, options.threads, [&](int b) {
       SetupBlock<Real>& block = frame.blocks[b];
       block.coverage.clear();
-      block.shade.clear();
-      block.clipMaps.clear();
+      block.source.clear();
+      block.clipped.clear();
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
       block.tileCursor.assign(tiles, 0);
@@ -261,8 +261,8 @@ struct Pipeline {
     times.setupMs = millisecondsSince(t0);
     const auto t1 = std::chrono::steady_clock::now();
     frame.blockCoverage.resize(std::size_t(blocks));
-    frame.blockShade.resize(std::size_t(blocks));
-    frame.blockClipMaps.resize(std::size_t(blocks));
+    frame.blockSource.resize(std::size_t(blocks));
+    frame.blockClipped.resize(std::size_t(blocks));
     frame.binStart.resize(tiles + 1);
     std::size_t total = 0;
     for (std::size_t t = 0; t < tiles; ++t) {  // (tile, block) order
@@ -278,8 +278,8 @@ struct Pipeline {
     parallelFor(blocks, options.threads, [&](int b) {
       SetupBlock<Real>& block = frame.blocks[b];
       frame.blockCoverage[b] = block.coverage.data();
-      frame.blockShade[b] = block.shade.data();
-      frame.blockClipMaps[b] = block.clipMaps.data();
+      frame.blockSource[b] = block.source.data();
+      frame.blockClipped[b] = block.clipped.data();
       for (std::size_t i = 0; i < block.coverage.size(); ++i) {
         const auto name = std::uint32_t((std::size_t(b) << kernel::kBlockShift) | i);
         forEachTile(block.coverage[i], [&](std::size_t t) { frame.binned[block.tileCursor[t]++] = name; });
@@ -334,8 +334,11 @@ void renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   const kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
   kernel::Input<Real> in{};
   in.coverage = frame.blockCoverage.data();
-  in.shade = frame.blockShade.data();
-  in.clipMaps = frame.blockClipMaps.data();
+  in.source = frame.blockSource.data();
+  in.clipped = frame.blockClipped.data();
+  in.vertexClip = frame.clip.data();
+  in.vertexRaster = frame.raster.data();
+  in.context = &p.context;
   in.triangles = scene.mesh.triangles.data();
   in.subpixelBits = options.subpixelBits;
   in.perspective = options.interpolation == Interpolation::kPerspective;
@@ -376,7 +379,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
       pixels.clear();
       kernel::coveredPixelsOf(block.coverage[i], options.subpixelBits, pixels, p.width);
-      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.shade[i].triangle, pixel);
+      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.source[i].triangle, pixel);
     }
   }
   return pairs;

@@ -18,11 +18,40 @@ std::int64_t ceilShift(std::int64_t a, int bits) { return -((-a) >> bits); }
 // subtraction is exact. Without SSE4.1's roundsd, std::nearbyint is a library call.
 double roundToInteger(double x) { return (x + 0x1.8p52) - 0x1.8p52; }
 
+// The snapped triangle's anchored barycentric planes l_i = l0 + lx dx + ly dy, from its raster
+// positions relative to the anchor's centre; shared by both halves of the set-up, which must
+// agree on them to the bit. Returns false when the unsnapped triangle has no area.
+struct Planes {
+  double x[3], y[3], invW[3], l0[3], lx[3], ly[3];
+};
+
+bool planesOf(const glm::dvec4 clip[3], const glm::dvec2 raster[3], int anchorX, int anchorY, Planes& p) {
+  const double ax = anchorX + 0.5, ay = anchorY + 0.5;  // the anchor's centre, exact
+  for (int i = 0; i < 3; ++i) {
+    p.x[i] = raster[i].x - ax;
+    p.y[i] = raster[i].y - ay;
+    p.invW[i] = 1.0 / clip[i].w;
+  }
+  const double area = (p.x[1] - p.x[0]) * (p.y[2] - p.y[0]) - (p.y[1] - p.y[0]) * (p.x[2] - p.x[0]);
+  // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
+  // a needle far below the snapping grid. No barycentrics exist for it: drop it.
+  if (!(area != 0.0)) return false;
+  // l_i(p) = E_i(p) / area with E_i the edge function of the edge opposite vertex i:
+  // at the anchor (p = 0) and its gradient d(l_i)/dx = -(y_to - y_from) / area, etc.
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3, to = (i + 2) % 3;
+    p.l0[i] = ((p.x[to] - p.x[from]) * (0.0 - p.y[from]) - (p.y[to] - p.y[from]) * (0.0 - p.x[from])) / area;
+    p.lx[i] = -(p.y[to] - p.y[from]) / area;
+    p.ly[i] = (p.x[to] - p.x[from]) / area;
+  }
+  return true;
+}
+
 }  // namespace
 
 template <typename Real>
-bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges,
-                   bool clipped, const SetupContext& ctx, CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
+bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx,
+                   CoverageSetup<Real>& c) {
   const int bits = ctx.subpixelBits;
   const double scale = double(std::int64_t(1) << bits);
   std::int64_t xf[3], yf[3];
@@ -58,60 +87,55 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
     c.flags |= CoverageSetup<Real>::kNarrow;
   }
 
-  // Anchor: the pixel at the centre of the clipped bounding box; every offset is at most R.
+  // Anchor: the pixel at the centre of the clipped bounding box.
   c.anchorX = c.minX + (c.maxX - c.minX) / 2;
   c.anchorY = c.minY + (c.maxY - c.minY) / 2;
-  const double R = std::max({c.anchorX - c.minX, c.maxX - c.anchorX, c.anchorY - c.minY, c.maxY - c.anchorY, 0}) + 0.0;
-  const double ax = c.anchorX + 0.5, ay = c.anchorY + 0.5;  // the anchor's centre, exact
-  double x[3], y[3], invW[3];
+  Planes p;
+  if (!planesOf(clip, raster, c.anchorX, c.anchorY, p)) return false;
+  double zx = 0.0, zy = 0.0, invW0 = 0.0;  // the 1/w plane: its gradient and value at the anchor
   for (int i = 0; i < 3; ++i) {
-    x[i] = raster[i].x - ax;
-    y[i] = raster[i].y - ay;
-    invW[i] = 1.0 / clip[i].w;
-    s.w[i] = Real(clip[i].w);
-    s.invW[i] = Real(invW[i]);
+    zx += p.lx[i] * p.invW[i];
+    zy += p.ly[i] * p.invW[i];
   }
-  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-  // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
-  // a needle far below the snapping grid. No barycentrics exist for it: drop it.
-  if (!(area != 0.0)) return false;
-  // l_i(p) = E_i(p) / area with E_i the edge function of the edge opposite vertex i:
-  // at the anchor (p = 0) and its gradient d(l_i)/dx = -(y_to - y_from) / area, etc.
-  double l0[3], lx[3], ly[3], zx = 0.0, zy = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3, to = (i + 2) % 3;
-    l0[i] = ((x[to] - x[from]) * (0.0 - y[from]) - (y[to] - y[from]) * (0.0 - x[from])) / area;
-    lx[i] = -(y[to] - y[from]) / area;
-    ly[i] = (x[to] - x[from]) / area;
-    s.l0[i] = Real(l0[i]);
-    s.lx[i] = Real(lx[i]);
-    s.ly[i] = Real(ly[i]);
-    zx += lx[i] * invW[i];
-    zy += ly[i] * invW[i];
-    // |grad l_i| by sqrt of the sum of squares (hypot costs more than the rest of the set-up),
-    // unless a square overflowed or underflowed.
-    const double squares = lx[i] * lx[i] + ly[i] * ly[i];
-    const double length = std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx[i], ly[i]);
-    s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(1.0 / length);
-  }
-  double invW0 = 0.0;  // 1/w at the anchor
-  for (int i = 0; i < 3; ++i) invW0 += l0[i] * invW[i];
+  for (int i = 0; i < 3; ++i) invW0 += p.l0[i] * p.invW[i];
   c.key0 = Real(ctx.keyA + ctx.keyB * invW0);
   c.keyX = Real(ctx.keyB * zx);
   c.keyY = Real(ctx.keyB * zy);
+  return true;
+}
+
+template <typename Real>
+void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges, bool clipped,
+                const SetupContext& ctx, const CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
+  Planes p;
+  planesOf(clip, raster, c.anchorX, c.anchorY, p);  // has area: setupCoverage accepted it
+  for (int i = 0; i < 3; ++i) {
+    s.w[i] = Real(clip[i].w);
+    s.invW[i] = Real(p.invW[i]);
+    s.l0[i] = Real(p.l0[i]);
+    s.lx[i] = Real(p.lx[i]);
+    s.ly[i] = Real(p.ly[i]);
+    // |grad l_i| by sqrt of the sum of squares (hypot costs more than the rest of the set-up),
+    // unless a square overflowed or underflowed.
+    const double squares = p.lx[i] * p.lx[i] + p.ly[i] * p.ly[i];
+    const double length = std::isnormal(squares) ? std::sqrt(squares) : std::hypot(p.lx[i], p.ly[i]);
+    s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(1.0 / length);
+  }
 
   // The error bound of docs/numerics.md ("The rasterizer's bound"). u: the per-pixel unit
   // roundoff. Each l_i = l0 + lx dx + ly dy rounds its three coefficients, two products and
-  // two sums: error <= 4 u (|l0| + (|lx| + |ly|) R) + O(u^2). delta bounds how far the double
-  // transform may have moved a vertex, in pixels; l_i moves by at most |grad l_i| delta per
-  // unit of barycentric weight on each of the three vertices.
+  // two sums: error <= 4 u (|l0| + (|lx| + |ly|) R) + O(u^2), with R the largest offset from
+  // the anchor. delta bounds how far the double transform may have moved a vertex, in pixels;
+  // l_i moves by at most |grad l_i| delta per unit of barycentric weight on each of the three
+  // vertices.
+  const double R = std::max({c.anchorX - c.minX, c.maxX - c.anchorX, c.anchorY - c.minY, c.maxY - c.anchorY, 0}) + 0.0;
   const double u = ctx.unitRoundoff;
   double epsL = 0.0, gradient = 0.0, lMax = 0.0;
   for (int i = 0; i < 3; ++i) {
-    const double g = std::fabs(lx[i]) + std::fabs(ly[i]);
-    epsL = std::max(epsL, 4.0 * u * (std::fabs(l0[i]) + g * R));
+    const double g = std::fabs(p.lx[i]) + std::fabs(p.ly[i]);
+    epsL = std::max(epsL, 4.0 * u * (std::fabs(p.l0[i]) + g * R));
     gradient = std::max(gradient, g);
-    lMax = std::max(lMax, std::fabs(l0[i]) + g * R);
+    lMax = std::max(lMax, std::fabs(p.l0[i]) + g * R);
   }
   const double wMin = std::min({clip[0].w, clip[1].w, clip[2].w});
   const double wMax = std::max({clip[0].w, clip[1].w, clip[2].w});
@@ -132,9 +156,22 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
   const double perspective = 4.0 * rho * epsL * std::max(1.0, lMax) + 6.0 * u;
   s.baryBound = float((clipped ? 3.0 * perspective + 4.0 * u : perspective) + 0x1p-23);
   s.depthBound = float(6.0 * rho * epsL * std::max(1.0, lMax) + 6.0 * u + 0x1p-23);
+}
+
+template <typename Real>
+bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges,
+                   bool clipped, const SetupContext& ctx, CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
+  if (!setupCoverage(clip, raster, ctx, c)) return false;
+  setupShade(clip, raster, innerEdges, clipped, ctx, c, s);
   return true;
 }
 
+template bool setupCoverage<float>(const glm::dvec4[3], const glm::dvec2[3], const SetupContext&, CoverageSetup<float>&);
+template bool setupCoverage<double>(const glm::dvec4[3], const glm::dvec2[3], const SetupContext&, CoverageSetup<double>&);
+template void setupShade<float>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool, const SetupContext&,
+                                const CoverageSetup<float>&, ShadeSetup<float>&);
+template void setupShade<double>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool, const SetupContext&,
+                                 const CoverageSetup<double>&, ShadeSetup<double>&);
 template bool setupTriangle<float>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool,
                                    const SetupContext&, CoverageSetup<float>&, ShadeSetup<float>&);
 template bool setupTriangle<double>(const glm::dvec4[3], const glm::dvec2[3], unsigned, bool,

@@ -43,11 +43,28 @@ struct CoverageSetup {
   }
 };
 
+// Where a set-up came from: all setupShade needs besides the CoverageSetup. A whole triangle
+// takes its vertices from the frame's per-vertex arrays; a clipped sub-triangle has its own
+// ClippedTriangle record in its block.
+struct SetupSource {
+  std::uint32_t triangle;  // source triangle index (the tri.id written)
+  std::int32_t clipped;    // index of its ClippedTriangle in the block; -1 = the whole triangle
+};
+
+template <typename Real>
+struct ClippedTriangle {
+  glm::mat<3, 3, Real> map;  // columns: source barycentrics of the sub-vertices
+  glm::dvec4 clip[3];
+  glm::dvec2 raster[3];
+  unsigned innerEdges;       // as for setupTriangle
+};
+
 // What resolve reads for the pixels a set-up wins.
 template <typename Real>
 struct ShadeSetup {
   std::uint32_t triangle;    // source triangle index (the tri.id written)
-  std::int32_t clipMap;      // index of the 3x3 map to source barycentrics; -1 = identity
+  std::int32_t clipMap;      // index of the ClippedTriangle whose map gives source barycentrics;
+                             // -1 = identity
   Real l0[3], lx[3], ly[3];  // screen-space barycentric planes: l_i = l0 + lx dx + ly dy
   Real w[3], invW[3];        // clip w (= depth) of the vertices and its reciprocal
   Real edgeHeight[3];        // 1 / |grad l_i|: pixels from l_i = 0 to l_i = 1; -1 for an edge
@@ -63,7 +80,19 @@ struct SetupContext {
   double keyA, keyB;    // depth key = keyA + keyB / w
 };
 
-// Snaps and sets up one sub-triangle from its clip-space vertices and raster positions.
+// The two halves of the set-up. setupCoverage snaps and sets up what the coverage and depth
+// pass needs, and returns false when the sub-triangle covers no pixel centre (zero snapped
+// area, or no centre of the viewport inside its bounding box). setupShade, given a set-up
+// that setupCoverage accepted, computes what resolve needs; the tiles call it only for the
+// set-ups that win a pixel (docs/rasterizer.md), and it gives the same bits wherever it runs.
+template <typename Real>
+bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx,
+                   CoverageSetup<Real>& c);
+template <typename Real>
+void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges, bool clipped,
+                const SetupContext& ctx, const CoverageSetup<Real>& c, ShadeSetup<Real>& s);
+
+// Both halves at once: snaps and sets up one sub-triangle from its clip-space vertices and raster positions.
 // `innerEdges` has bit i set when the edge opposite vertex i runs inside the source triangle
 // (a diagonal of a clipped polygon's fan); `clipped` when the sub-triangle came from clipping.
 // Returns false when it covers no pixel centre (zero snapped area, or no centre of the

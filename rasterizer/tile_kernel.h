@@ -53,9 +53,12 @@ struct Outputs {
 template <typename Real>
 struct Input {
   const CoverageSetup<Real>* const* coverage;       // per block
-  const ShadeSetup<Real>* const* shade;             // per block
-  const glm::mat<3, 3, Real>* const* clipMaps;      // per block
+  const SetupSource* const* source;                 // per block
+  const ClippedTriangle<Real>* const* clipped;      // per block
   const glm::uvec3* triangles;                      // the mesh's
+  const glm::dvec4* vertexClip;                     // per mesh vertex: setupShade's inputs
+  const glm::dvec2* vertexRaster;
+  const SetupContext* context;
   int subpixelBits;
   bool perspective;
   Real tieScale;  // depth.tie = tieScale (|key0| + |keyX dx| + |keyY dy|) depth (setup.h)
@@ -193,12 +196,64 @@ struct Resolved {
   f32x8 bary[3], depth, edgeDistance, depthTie;
 };
 
+// The resolve half of a set-up (setupShade), from the inputs its coverage half had.
 template <typename Real>
-RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name, int x, int y,
-                                   Resolved& r, float* attributes) {
+inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, ShadeSetup<Real>& s) {
+  const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+  const SetupSource& source = in.source[name >> kBlockShift][name & kLocalMask];
+  if (source.clipped < 0) {
+    const glm::uvec3 tri = in.triangles[source.triangle];
+    const glm::dvec4 clip[3] = {in.vertexClip[tri.x], in.vertexClip[tri.y], in.vertexClip[tri.z]};
+    const glm::dvec2 raster[3] = {in.vertexRaster[tri.x], in.vertexRaster[tri.y], in.vertexRaster[tri.z]};
+    setupShade(clip, raster, 0u, false, *in.context, c, s);
+  } else {
+    const ClippedTriangle<Real>& t = in.clipped[name >> kBlockShift][source.clipped];
+    setupShade(t.clip, t.raster, t.innerEdges, true, *in.context, c, s);
+  }
+  s.triangle = source.triangle;
+  s.clipMap = source.clipped;
+}
+
+// shadeSetupOf for the set-ups at bins[winners[0..count)]. Their records, the mesh's triangles
+// and the vertices are scattered through memory: each is prefetched a few set-ups ahead of its
+// use, the record first, then the triangle it names, then that triangle's vertices.
+template <typename Real>
+inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, const std::uint32_t* winners,
+                          std::size_t count, ShadeSetup<Real>* shades) {
+  constexpr std::size_t kRecordsAhead = 8, kTrianglesAhead = 4, kVerticesAhead = 2;
+  const auto source = [&](std::size_t i) -> const SetupSource& {
+    const std::uint32_t name = bins[winners[i]];
+    return in.source[name >> kBlockShift][name & kLocalMask];
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i + kRecordsAhead < count) {
+      const std::uint32_t name = bins[winners[i + kRecordsAhead]];
+      __builtin_prefetch(&in.source[name >> kBlockShift][name & kLocalMask]);
+      __builtin_prefetch(&in.coverage[name >> kBlockShift][name & kLocalMask]);
+    }
+    if (i + kTrianglesAhead < count) {
+      const SetupSource& ahead = source(i + kTrianglesAhead);
+      if (ahead.clipped < 0) __builtin_prefetch(&in.triangles[ahead.triangle]);
+    }
+    if (i + kVerticesAhead < count) {
+      const SetupSource& ahead = source(i + kVerticesAhead);
+      if (ahead.clipped < 0) {
+        const glm::uvec3 tri = in.triangles[ahead.triangle];
+        for (const unsigned v : {tri.x, tri.y, tri.z}) {
+          __builtin_prefetch(&in.vertexClip[v]);
+          __builtin_prefetch(&in.vertexRaster[v]);
+        }
+      }
+    }
+    shadeSetupOf(in, bins[winners[i]], shades[i]);
+  }
+}
+
+template <typename Real>
+RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name,
+                                   const ShadeSetup<Real>& s, int x, int y, Resolved& r, float* attributes) {
   using V = typename Lanes<Real>::V;
   const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
-  const ShadeSetup<Real>& s = in.shade[name >> kBlockShift][name & kLocalMask];
   const V dx = Real(x - c.anchorX) + iota<Real>();  // small integers: exact
   const Real dy = Real(y - c.anchorY);
   V l[3];
@@ -207,7 +262,7 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   V b[3] = {recovered.b[0], recovered.b[1], recovered.b[2]};
   const V depth = recovered.depth;
   if (s.clipMap >= 0) {  // sub-triangle -> source triangle, in glm's mat3 * vec3 order
-    const glm::mat<3, 3, Real>& m = in.clipMaps[name >> kBlockShift][s.clipMap];
+    const glm::mat<3, 3, Real>& m = in.clipped[name >> kBlockShift][s.clipMap].map;
     const V c0 = m[0][0] * b[0] + m[1][0] * b[1] + m[2][0] * b[2];
     const V c1 = m[0][1] * b[0] + m[1][1] * b[1] + m[2][1] * b[2];
     const V c2 = m[0][2] * b[0] + m[1][2] * b[1] + m[2][2] * b[2];
@@ -262,7 +317,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   using V = typename Lanes<Real>::V;
   using M = typename Lanes<Real>::M;
   constexpr int kPixels = kTileSize * kTileSize + kLanes;  // + a chunk of slack past the end
-  alignas(64) std::uint32_t winner[kPixels];
+  alignas(64) std::uint32_t winner[kPixels];  // position in job.bins of the pixel's winner
   alignas(64) Real nearest[kPixels];  // depth key of the winner: larger is nearer
   for (int i = 0; i < kPixels; ++i) winner[i] = kEmpty;
   for (int i = 0; i < kPixels; ++i) nearest[i] = -std::numeric_limits<Real>::infinity();
@@ -289,9 +344,31 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       if (!any(update)) return;
       store(nearestAt, nearer ? z : old);
       const u32x8 w = load<u32x8>(winnerAt);
-      store(winnerAt, update ? (u32x8{} + name) : w);
+      store(winnerAt, update ? (u32x8{} + std::uint32_t(n)) : w);
     });
   }
+
+  // The resolve half of the set-up (setupShade) for every set-up that wins a pixel of this
+  // tile, in bin order; set-ups that win nothing in the frame never get one. slot[n] is the
+  // index in `shades` of the set-up at job.bins[n]. The arrays live per thread, reused from
+  // tile to tile.
+  thread_local std::vector<std::int32_t> slot;
+  thread_local std::vector<std::uint32_t> winners;  // positions in job.bins, ascending
+  thread_local std::vector<ShadeSetup<Real>> shades;
+  slot.assign(job.count, -1);
+  for (int i = 0; i < kTileSize * kTileSize; ++i) {
+    if (winner[i] != kEmpty) slot[winner[i]] = 0;
+  }
+  winners.clear();
+  for (std::size_t n = 0; n < job.count; ++n) {
+    if (slot[n] == 0) {
+      slot[n] = std::int32_t(winners.size());
+      winners.push_back(std::uint32_t(n));
+    }
+  }
+  shades.resize(winners.size());
+  shadeSetupsOf(in, job.bins, winners.data(), winners.size(), shades.data());
+  const auto shadeOf = [&](std::uint32_t n) -> const ShadeSetup<Real>& { return shades[std::size_t(slot[n])]; };
 
   // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.
   const int components = out.attributeComponents;
@@ -323,8 +400,8 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       u32x8 id;
       f32x8 baryBound, depthBound;
       if (lanes == kLanes && !any(w != w[0]) && w[0] != kEmpty) {  // one winner: no blending
-        const ShadeSetup<Real>& s = in.shade[w[0] >> kBlockShift][w[0] & kLocalMask];
-        resolveLanes(in, out, w[0], x, y, r, chunkAttributes);
+        const ShadeSetup<Real>& s = shadeOf(w[0]);
+        resolveLanes(in, out, job.bins[w[0]], s, x, y, r, chunkAttributes);
         id = u32x8{} + s.triangle;
         baryBound = f32x8{} + s.baryBound;
         depthBound = f32x8{} + s.depthBound;
@@ -336,12 +413,12 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         while (any(remaining)) {
           int first = 0;
           while (!remaining[first]) ++first;
-          const std::uint32_t name = w[first];
-          const i32x8 mine = remaining & (w == name);
+          const std::uint32_t n = w[first];
+          const i32x8 mine = remaining & (w == n);
           remaining &= ~mine;
           Resolved own{};
-          resolveLanes(in, out, name, x, y, own, winnerAttributes);
-          const ShadeSetup<Real>& s = in.shade[name >> kBlockShift][name & kLocalMask];
+          const ShadeSetup<Real>& s = shadeOf(n);
+          resolveLanes(in, out, job.bins[n], s, x, y, own, winnerAttributes);
           id = mine ? u32x8{} + s.triangle : id;
           for (int i = 0; i < 3; ++i) r.bary[i] = mine ? own.bary[i] : r.bary[i];
           r.depth = mine ? own.depth : r.depth;
