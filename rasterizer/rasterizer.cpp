@@ -167,6 +167,8 @@ struct Pipeline {
       for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
         const glm::dvec3 p(positions[i]);
         const glm::dvec4 c = clipFromWorld * glm::dvec4(p, 1.0);
+        prefetchForWriteAhead(frame.clip.data() + i);  // last read by the other core's tiles
+        prefetchForWriteAhead(frame.raster.data() + i);
         frame.clip[i] = c;
         frame.outcode[i] = std::uint8_t(volume.outcode(c));
         if (frame.outcode[i] == 0) frame.raster[i] = rasterOf(c);  // what emit() would compute

@@ -251,7 +251,8 @@ inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, cons
 
 template <typename Real>
 RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name,
-                                   const ShadeSetup<Real>& s, int x, int y, Resolved& r, float* attributes) {
+                                   const ShadeSetup<Real>& s, int x, int y, Resolved& r, float* attributes,
+                                   std::size_t stride) {
   using V = typename Lanes<Real>::V;
   const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
   const V dx = Real(x - c.anchorX) + iota<Real>();  // small integers: exact
@@ -291,7 +292,7 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
     const float* v1 = a.values + std::size_t(tri.y) * a.components;
     const float* v2 = a.values + std::size_t(tri.z) * a.components;
     for (int j = 0; j < a.components; ++j, ++k) {
-      store(attributes + kLanes * k, toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j])));
+      store(attributes + stride * k, toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j])));
     }
   }
 }
@@ -356,8 +357,13 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   thread_local std::vector<std::uint32_t> winners;  // positions in job.bins, ascending
   thread_local std::vector<ShadeSetup<Real>> shades;
   slot.assign(job.count, -1);
-  for (int i = 0; i < kTileSize * kTileSize; ++i) {
-    if (winner[i] != kEmpty) slot[winner[i]] = 0;
+  std::uint32_t last = kEmpty;  // the last winner marked: runs of it are skipped a chunk at a time
+  for (int i = 0; i < kTileSize * kTileSize; i += kLanes) {
+    const u32x8 w = load<u32x8>(winner + i);
+    if (!any(w != last)) continue;
+    for (int k = 0; k < kLanes; ++k) {
+      if (w[k] != last && w[k] != kEmpty) slot[w[k]] = 0, last = w[k];
+    }
   }
   winners.clear();
   for (std::size_t n = 0; n < job.count; ++n) {
@@ -372,9 +378,8 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
 
   // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.
   const int components = out.attributeComponents;
-  std::vector<float> attributes(std::size_t(components) * 2 * kLanes);  // plain floats: a
-  float* chunkAttributes = attributes.data();  // std::vector of vector types is not reliably
-  float* winnerAttributes = chunkAttributes + std::size_t(components) * kLanes;  // over-aligned
+  std::vector<float> winnerAttributes(std::size_t(components) * kLanes);  // plain floats: a
+  // std::vector of vector types is not reliably over-aligned
   const bool diagnostics = out.edgeDistance != nullptr;
   // Staging rows: id, b0..b2, depth, the four diagnostics, then the attribute components.
   constexpr int kFixedPlanes = 9, kStride = kTileSize + kLanes;
@@ -397,18 +402,20 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       const u32x8 w = load<u32x8>(winner + (y - job.y0) * kTileSize + (x - job.x0));
       const i32x8 valid = (iota32() < lanes) & (w != kEmpty);
       Resolved r{};
+      std::uint32_t* at = stage.data() + (x - job.x0);
+      float* attributesAt = reinterpret_cast<float*>(at + kFixedPlanes * kStride);
       u32x8 id;
       f32x8 baryBound, depthBound;
       if (lanes == kLanes && !any(w != w[0]) && w[0] != kEmpty) {  // one winner: no blending
         const ShadeSetup<Real>& s = shadeOf(w[0]);
-        resolveLanes(in, out, job.bins[w[0]], s, x, y, r, chunkAttributes);
+        resolveLanes(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride);
         id = u32x8{} + s.triangle;
         baryBound = f32x8{} + s.baryBound;
         depthBound = f32x8{} + s.depthBound;
       } else {
         id = u32x8{} + channels::kNoTriangle;
         baryBound = depthBound = f32x8{};
-        std::fill_n(chunkAttributes, std::size_t(components) * kLanes, 0.0f);
+        for (int k = 0; k < components; ++k) store(attributesAt + kStride * k, f32x8{});
         i32x8 remaining = valid;
         while (any(remaining)) {
           int first = 0;
@@ -418,7 +425,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
           remaining &= ~mine;
           Resolved own{};
           const ShadeSetup<Real>& s = shadeOf(n);
-          resolveLanes(in, out, job.bins[n], s, x, y, own, winnerAttributes);
+          resolveLanes(in, out, job.bins[n], s, x, y, own, winnerAttributes.data(), kLanes);
           id = mine ? u32x8{} + s.triangle : id;
           for (int i = 0; i < 3; ++i) r.bary[i] = mine ? own.bary[i] : r.bary[i];
           r.depth = mine ? own.depth : r.depth;
@@ -427,12 +434,11 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
           baryBound = mine ? f32x8{} + s.baryBound : baryBound;
           depthBound = mine ? f32x8{} + s.depthBound : depthBound;
           for (int k = 0; k < components; ++k) {
-            float* into = chunkAttributes + kLanes * k;
-            store(into, mine ? load<f32x8>(winnerAttributes + kLanes * k) : load<f32x8>(into));
+            float* into = attributesAt + kStride * k;
+            store(into, mine ? load<f32x8>(winnerAttributes.data() + kLanes * k) : load<f32x8>(into));
           }
         }
       }
-      std::uint32_t* at = stage.data() + (x - job.x0);
       store(at, id);
       for (int i = 0; i < 3; ++i) store(at + (1 + i) * kStride, r.bary[i]);
       store(at + 4 * kStride, r.depth);
@@ -441,9 +447,6 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         store(at + 6 * kStride, depthBound);
         store(at + 7 * kStride, r.edgeDistance);
         store(at + 8 * kStride, r.depthTie);
-      }
-      for (int k = 0; k < components; ++k) {
-        std::memcpy(at + (kFixedPlanes + k) * kStride, chunkAttributes + kLanes * k, sizeof(f32x8));
       }
     }
     const std::size_t rowStart = std::size_t(y) * out.width + job.x0;
