@@ -90,14 +90,25 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
   // Anchor: the pixel at the centre of the clipped bounding box.
   c.anchorX = c.minX + (c.maxX - c.minX) / 2;
   c.anchorY = c.minY + (c.maxY - c.minY) / 2;
-  Planes p;
-  if (!planesOf(clip, raster, c.anchorX, c.anchorY, p)) return false;
-  double zx = 0.0, zy = 0.0, invW0 = 0.0;  // the 1/w plane: its gradient and value at the anchor
+  // The 1/w plane, sum_i l_i / w_i, at the anchor and its gradient: the sums of planesOf's
+  // numerators weighted by 1/w_i, each divided by the area once (4 divisions, not 12).
+  const double ax = c.anchorX + 0.5, ay = c.anchorY + 0.5;
+  double x[3], y[3], invW[3];
   for (int i = 0; i < 3; ++i) {
-    zx += p.lx[i] * p.invW[i];
-    zy += p.ly[i] * p.invW[i];
+    x[i] = raster[i].x - ax;
+    y[i] = raster[i].y - ay;
+    invW[i] = 1.0 / clip[i].w;
   }
-  for (int i = 0; i < 3; ++i) invW0 += p.l0[i] * p.invW[i];
+  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  if (!(area != 0.0)) return false;  // as in planesOf
+  double sx = 0.0, sy = 0.0, s0 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3, to = (i + 2) % 3;
+    s0 += ((x[to] - x[from]) * (0.0 - y[from]) - (y[to] - y[from]) * (0.0 - x[from])) * invW[i];
+    sx += -(y[to] - y[from]) * invW[i];
+    sy += (x[to] - x[from]) * invW[i];
+  }
+  const double invW0 = s0 / area, zx = sx / area, zy = sy / area;
   c.key0 = Real(ctx.keyA + ctx.keyB * invW0);
   c.keyX = Real(ctx.keyB * zx);
   c.keyY = Real(ctx.keyB * zy);
