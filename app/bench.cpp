@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <unistd.h>
 
 #include "compare/compare.h"
 #include "core/error.h"
+#include "core/exr_io.h"
 #include "core/parallel.h"
 #include "raytracer_ref/reference.h"
 
@@ -28,6 +31,24 @@ std::string xml(const std::string& text) {
   }
   return out;
 }
+
+// Where bench writes the EXR it times: the system's temporary folder, one name per process,
+// removed however the timing ends.
+struct TemporaryFile {
+  std::string path;
+  TemporaryFile() {
+    std::error_code error;
+    const std::filesystem::path folder = std::filesystem::temp_directory_path(error);
+    if (error) throw ioError("the temporary folder", "bench cannot time EXR writing: " + error.message());
+    path = (folder / ("rastercheck-bench-" + std::to_string(::getpid()) + ".exr")).string();
+  }
+  ~TemporaryFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -86,7 +107,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     }
     for (const BenchSetting& setting : benchSettings(settings.raster)) {
       step(scene.name + ": " + setting.name);
-      std::vector<double> times;
+      std::vector<double> times, transform, setup, bin, tiles, exr;
       Rasterizer rasterizer(setting.raster);
       Framebuffer raster;
       rasterizer.render(scene, raster);
@@ -94,6 +115,19 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
         const long long t0 = nowNanoseconds();
         rasterizer.render(scene, raster);
         times.push_back(millisecondsSince(t0));
+        const StageTimes& stages = rasterizer.stageTimes();
+        transform.push_back(stages.transformMs);
+        setup.push_back(stages.setupMs);
+        bin.push_back(stages.binMs);
+        tiles.push_back(stages.tilesMs);
+      }
+      if (setting.isDefault) {  // after the timed frames, so they run as they would without it
+        const TemporaryFile file;
+        for (int r = 0; r < runs; ++r) {
+          const long long t0 = nowNanoseconds();
+          writeExr(raster, file.path);
+          exr.push_back(millisecondsSince(t0));
+        }
       }
       const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr);
       BenchRow row;
@@ -106,6 +140,13 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.threads = resolveThreadCount(setting.raster.threads);
       row.runs = runs;
       row.rasterMs = median(times);
+      row.rasterMsMin = *std::min_element(times.begin(), times.end());
+      row.rasterMsMax = *std::max_element(times.begin(), times.end());
+      row.transformMs = median(transform);
+      row.setupMs = median(setup);
+      row.binMs = median(bin);
+      row.tilesMs = median(tiles);
+      row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
       row.referenceBuildMs = median(build);
       row.referenceTraceMs = median(trace);
       row.speedup = row.referenceTraceMs / row.rasterMs;
@@ -124,13 +165,18 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
 std::string benchJson(const std::vector<BenchRow>& rows) {
   nlohmann::json list = nlohmann::json::array();
   for (const BenchRow& r : rows) {
-    list.push_back({{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
-                    {"threads", r.threads}, {"setting", r.setting}, {"default", r.isDefault}, {"runs", r.runs},
-                    {"raster_ms", r.rasterMs}, {"reference_build_ms", r.referenceBuildMs},
-                    {"reference_trace_ms", r.referenceTraceMs}, {"speedup", r.speedup},
-                    {"speedup_with_build", r.speedupWithBuild}, {"triangles_per_second", r.trianglesPerSecond},
-                    {"pixels_per_second", r.pixelsPerSecond}, {"bary_max_error", r.baryMax},
-                    {"bary_p999_error", r.baryP999}, {"disagreement_fraction", r.disagreementFraction}});
+    nlohmann::json row = {{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
+                          {"threads", r.threads}, {"setting", r.setting}, {"default", r.isDefault}, {"runs", r.runs},
+                          {"raster_ms", r.rasterMs}, {"raster_ms_min", r.rasterMsMin}, {"raster_ms_max", r.rasterMsMax},
+                          {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
+                                        {"tiles", r.tilesMs}}},
+                          {"reference_build_ms", r.referenceBuildMs}, {"reference_trace_ms", r.referenceTraceMs},
+                          {"speedup", r.speedup}, {"speedup_with_build", r.speedupWithBuild},
+                          {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
+                          {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
+                          {"disagreement_fraction", r.disagreementFraction}};
+    if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
+    list.push_back(row);
   }
   return nlohmann::json({{"format_version", 1}, {"rows", list}}).dump(2) + "\n";
 }
@@ -181,16 +227,21 @@ std::vector<BenchRow> readBenchJson(const std::string& path) {
 
 std::string benchCsv(const std::vector<BenchRow>& rows) {
   std::ostringstream out;
-  out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,reference_build_ms,"
-         "reference_trace_ms,speedup,speedup_with_build,triangles_per_second,pixels_per_second,"
-         "bary_max_error,bary_p999_error,disagreement_fraction\n";
-  char line[512];
+  out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
+         "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
+         "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms\n";
+  char line[768];
   for (const BenchRow& r : rows) {
-    std::snprintf(line, sizeof line, "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
+    char exr[32] = "";  // empty: not measured for this setting
+    if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
+    std::snprintf(line, sizeof line,
+                  "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
+                  "%.4g,%.4g,%s\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
-                  r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.referenceBuildMs, r.referenceTraceMs,
-                  r.speedup, r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
-                  r.disagreementFraction);
+                  r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
+                  r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
+                  r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
+                  r.disagreementFraction, exr);
     out << line;
   }
   return out.str();

@@ -28,6 +28,12 @@ struct BenchRow {
   std::size_t triangles = 0;
   int width = 0, height = 0, threads = 0, runs = 0;
   double rasterMs = 0;            // median over runs
+  double rasterMsMin = 0, rasterMsMax = 0;  // the spread of the runs: how noisy the machine was
+  // Medians over runs of the rasterizer's stages (Rasterizer::stageTimes).
+  double transformMs = 0, setupMs = 0, binMs = 0, tilesMs = 0;
+  // Median time to write the setting's output as `render -o` does (ZIP EXR, through a
+  // temporary file), measured for the default setting only; negative for the others.
+  double exrWriteMs = -1;
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs
   double speedup = 0;             // referenceTraceMs / rasterMs

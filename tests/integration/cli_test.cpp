@@ -166,6 +166,19 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
       ASSERT_TRUE(row.contains(key)) << key;
     }
     EXPECT_NEAR(row["speedup"].get<double>(), row["reference_trace_ms"].get<double>() / row["raster_ms"].get<double>(), 1e-9);
+    // The spread brackets the median; every stage took time, and none more than the slowest frame.
+    EXPECT_LE(row["raster_ms_min"].get<double>(), row["raster_ms"].get<double>());
+    EXPECT_GE(row["raster_ms_max"].get<double>(), row["raster_ms"].get<double>());
+    for (const char* stage : {"transform", "setup", "bin", "tiles"}) {
+      const double ms = row["stage_ms"].at(stage).get<double>();
+      EXPECT_GT(ms, 0.0) << stage;
+      EXPECT_LE(ms, row["raster_ms_max"].get<double>()) << stage;
+    }
+    // EXR writing is timed apart, for the default setting only.
+    EXPECT_EQ(row.contains("exr_write_ms"), row["default"].get<bool>()) << row["setting"];
+    if (row.contains("exr_write_ms")) {
+      EXPECT_GT(row["exr_write_ms"].get<double>(), 0.0);
+    }
     defaults += row["default"].get<bool>();
     if (row["setting"] == "perspective-float-8bit") perspective = row["bary_p999_error"];
     if (row["setting"] == "affine-float-8bit") affine = row["bary_p999_error"];
@@ -186,7 +199,10 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   std::ifstream csv(dir / "b.csv");
   std::string line;
   int lines = 0;
-  while (std::getline(csv, line)) ++lines;
+  while (std::getline(csv, line)) {
+    ++lines;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 24) << "25 columns in every line: " << line;
+  }
   EXPECT_EQ(lines, 9);  // header + 8 settings
   std::ifstream svgFile(dir / "b.svg");
   const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
