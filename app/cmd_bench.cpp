@@ -8,6 +8,7 @@
 #include "app/progress.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
+#include "core/exr_io.h"
 #include "core/parallel.h"
 
 namespace rc::app {
@@ -23,6 +24,7 @@ struct BenchArgs {
 
 int runBenchCommand(BenchArgs& args) {
   finishRenderSettings(args.settings);
+  setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
   for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
@@ -50,7 +52,8 @@ int runBenchCommand(BenchArgs& args) {
                 formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
   }
   std::printf("* default setting; speedup = reference trace / raster; w/build = (build + trace) / raster;\n"
-              "  exr ms = writing the default setting's output (ZIP EXR, as render -o does); --json adds stage times\n");
+              "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
+              "  --json adds stage times\n");
   if (!args.json.empty()) writeTextFile(args.json, benchJson(rows));
   if (!args.csv.empty()) writeTextFile(args.csv, benchCsv(rows));
   if (!args.chart.empty()) writeTextFile(args.chart, benchChartSvg(rows));

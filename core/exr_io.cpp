@@ -1,6 +1,7 @@
 // OpenEXR input and output for Framebuffers. Every OpenEXR exception is turned into an
 // rc::Error naming the file; nothing of OpenEXR leaks past this file.
 #include "core/exr_io.h"
+#include "core/parallel.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -149,7 +150,10 @@ void checkHeaderSizes(const std::string& path) {
 
 }  // namespace
 
-void setExrThreads(int threads) { Imf::setGlobalThreadCount(threads > 1 ? threads : 0); }
+void setExrThreads(int threads) {
+  threads = resolveThreadCount(threads);  // 0 = all cores, as everywhere else
+  Imf::setGlobalThreadCount(threads > 1 ? threads : 0);
+}
 
 void writeExr(const Framebuffer& fb, const std::string& path) {
   setLimits();

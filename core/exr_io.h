@@ -26,7 +26,7 @@ void writeExr(const Framebuffer& fb, const std::string& path);
 // attribute when it is not a complete, valid EXR in that form.
 Framebuffer readExr(const std::string& path);
 
-// Sets the number of threads OpenEXR uses for (de)compression.
+// Sets the number of threads OpenEXR uses for (de)compression; 0 = all cores.
 void setExrThreads(int threads);
 
 }  // namespace rc
