@@ -4,21 +4,38 @@
 // contracted and both produce the same bits.
 #include "rasterizer/tile_kernel.h"
 
+#include <immintrin.h>
+
 // See tile_kernel.h: vectors never cross a call boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace rc::kernel {
 
-void renderTileSse2(const Input<float>& in, const Outputs& out, const TileJob& job) { renderTile(in, out, job); }
-void renderTileSse2(const Input<double>& in, const Outputs& out, const TileJob& job) { renderTile(in, out, job); }
+void renderTileSse2(const Input<float>& in, const Outputs& out, const TileJob& job) {
+  renderTile<float, false>(in, out, job);
+}
+void renderTileSse2(const Input<double>& in, const Outputs& out, const TileJob& job) {
+  renderTile<double, false>(in, out, job);
+}
 
 __attribute__((target("avx2"))) void renderTileAvx2(const Input<float>& in, const Outputs& out,
                                                     const TileJob& job) {
-  renderTile(in, out, job);
+  renderTile<float, true>(in, out, job);
 }
 __attribute__((target("avx2"))) void renderTileAvx2(const Input<double>& in, const Outputs& out,
                                                     const TileJob& job) {
-  renderTile(in, out, job);
+  renderTile<double, true>(in, out, job);
+}
+
+__attribute__((target("avx2"))) void copyRowOutAvx2(std::uint32_t* to, const std::uint32_t* from, int n) {
+  int k = 0;
+  if ((reinterpret_cast<std::uintptr_t>(to) & 31u) == 0) {
+    for (; k + 8 <= n; k += 8) {
+      _mm256_stream_si256(reinterpret_cast<__m256i*>(to + k),
+                          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(from + k)));
+    }
+  }
+  copyRowOut(to + k, from + k, n - k);
 }
 
 namespace {

@@ -313,7 +313,11 @@ RC_KERNEL_INLINE void copyRowOut(std::uint32_t* to, const std::uint32_t* from, i
   for (; k < n; ++k) to[k] = from[k];
 }
 
-template <typename Real>
+// copyRowOut with 32-byte non-temporal stores (tile_kernel.cpp, AVX2 target): a call per row
+// and plane, since an intrinsic of the AVX2 target cannot sit in the shared inline code.
+void copyRowOutAvx2(std::uint32_t* to, const std::uint32_t* from, int n);
+
+template <typename Real, bool kAvx2>
 RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, const TileJob& job) {
   using V = typename Lanes<Real>::V;
   using M = typename Lanes<Real>::M;
@@ -452,7 +456,12 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     const std::size_t rowStart = std::size_t(y) * out.width + job.x0;
     const int n = job.x1 - job.x0 + 1;
     for (int plane = 0; plane < kFixedPlanes + components; ++plane) {
-      if (planes[plane]) copyRowOut(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+      if (!planes[plane]) continue;
+      if constexpr (kAvx2) {
+        copyRowOutAvx2(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+      } else {
+        copyRowOut(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+      }
     }
   }
   _mm_sfence();  // the non-temporal stores are visible before the tile counts as done
