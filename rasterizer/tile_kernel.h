@@ -322,7 +322,9 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   using V = typename Lanes<Real>::V;
   using M = typename Lanes<Real>::M;
   constexpr int kPixels = kTileSize * kTileSize + kLanes;  // + a chunk of slack past the end
-  alignas(64) std::uint32_t winner[kPixels];  // position in job.bins of the pixel's winner
+  // Position in job.bins of each pixel's winner: below kMaxBlocks 2^20 (rasterizer.cpp), so
+  // never kEmpty.
+  alignas(64) std::uint32_t winner[kPixels];
   alignas(64) Real nearest[kPixels];  // depth key of the winner: larger is nearer
   for (int i = 0; i < kPixels; ++i) winner[i] = kEmpty;
   for (int i = 0; i < kPixels; ++i) nearest[i] = -std::numeric_limits<Real>::infinity();
@@ -356,7 +358,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   // The resolve half of the set-up (setupShade) for every set-up that wins a pixel of this
   // tile, in bin order; set-ups that win nothing in the frame never get one. slot[n] is the
   // index in `shades` of the set-up at job.bins[n]. The arrays live per thread, reused from
-  // tile to tile.
+  // tile to tile of a frame.
   thread_local std::vector<std::int32_t> slot;
   thread_local std::vector<std::uint32_t> winners;  // positions in job.bins, ascending
   thread_local std::vector<ShadeSetup<Real>> shades;
