@@ -18,33 +18,34 @@ std::int64_t ceilShift(std::int64_t a, int bits) { return -((-a) >> bits); }
 // subtraction is exact. Without SSE4.1's roundsd, std::nearbyint is a library call.
 double roundToInteger(double x) { return (x + 0x1.8p52) - 0x1.8p52; }
 
-// The snapped triangle's anchored barycentric planes l_i = l0 + lx dx + ly dy, from its raster
-// positions relative to the anchor's centre; shared by both halves of the set-up, which must
-// agree on them to the bit. Returns false when the unsnapped triangle has no area.
-struct Planes {
-  double x[3], y[3], invW[3], l0[3], lx[3], ly[3];
+// The vertices relative to the anchor pixel's centre, their 1/w, and the doubled signed area
+// of the unsnapped triangle: what both halves of the set-up start from.
+struct Anchored {
+  double x[3], y[3], invW[3], area;
 };
 
-bool planesOf(const glm::dvec4 clip[3], const glm::dvec2 raster[3], int anchorX, int anchorY, Planes& p) {
+Anchored anchoredOf(const glm::dvec4 clip[3], const glm::dvec2 raster[3], int anchorX, int anchorY) {
+  Anchored a;
   const double ax = anchorX + 0.5, ay = anchorY + 0.5;  // the anchor's centre, exact
   for (int i = 0; i < 3; ++i) {
-    p.x[i] = raster[i].x - ax;
-    p.y[i] = raster[i].y - ay;
-    p.invW[i] = 1.0 / clip[i].w;
+    a.x[i] = raster[i].x - ax;
+    a.y[i] = raster[i].y - ay;
+    a.invW[i] = 1.0 / clip[i].w;
   }
-  const double area = (p.x[1] - p.x[0]) * (p.y[2] - p.y[0]) - (p.y[1] - p.y[0]) * (p.x[2] - p.x[0]);
-  // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
-  // a needle far below the snapping grid. No barycentrics exist for it: drop it.
-  if (!(area != 0.0)) return false;
-  // l_i(p) = E_i(p) / area with E_i the edge function of the edge opposite vertex i:
-  // at the anchor (p = 0) and its gradient d(l_i)/dx = -(y_to - y_from) / area, etc.
-  for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3, to = (i + 2) % 3;
-    p.l0[i] = ((p.x[to] - p.x[from]) * (0.0 - p.y[from]) - (p.y[to] - p.y[from]) * (0.0 - p.x[from])) / area;
-    p.lx[i] = -(p.y[to] - p.y[from]) / area;
-    p.ly[i] = (p.x[to] - p.x[from]) / area;
-  }
-  return true;
+  a.area = (a.x[1] - a.x[0]) * (a.y[2] - a.y[0]) - (a.y[1] - a.y[0]) * (a.x[2] - a.x[0]);
+  return a;
+}
+
+// The numerators of l_i = E_i / area, with E_i the edge function of the edge opposite vertex
+// i: its value at the anchor (p = 0) and its gradient, d(E_i)/dx = -(y_to - y_from), etc.
+struct EdgeNumerators {
+  double e0, ex, ey;
+};
+
+EdgeNumerators edgeNumerators(const Anchored& a, int i) {
+  const int from = (i + 1) % 3, to = (i + 2) % 3;
+  return {(a.x[to] - a.x[from]) * (0.0 - a.y[from]) - (a.y[to] - a.y[from]) * (0.0 - a.x[from]),
+          -(a.y[to] - a.y[from]), a.x[to] - a.x[from]};
 }
 
 }  // namespace
@@ -90,25 +91,21 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
   // Anchor: the pixel at the centre of the clipped bounding box.
   c.anchorX = c.minX + (c.maxX - c.minX) / 2;
   c.anchorY = c.minY + (c.maxY - c.minY) / 2;
-  // The 1/w plane, sum_i l_i / w_i, at the anchor and its gradient: the sums of planesOf's
-  // numerators weighted by 1/w_i, each divided by the area once (4 divisions, not 12).
-  const double ax = c.anchorX + 0.5, ay = c.anchorY + 0.5;
-  double x[3], y[3], invW[3];
+  // The 1/w plane, sum_i l_i / w_i, at the anchor and its gradient: the sums of the edge
+  // numerators weighted by 1/w_i, each divided by the area once (4 divisions; the
+  // barycentric planes of setupShade take 12).
+  const Anchored a = anchoredOf(clip, raster, c.anchorX, c.anchorY);
+  // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
+  // a needle far below the snapping grid. No barycentrics exist for it: drop it.
+  if (!(a.area != 0.0)) return false;
+  double s0 = 0.0, sx = 0.0, sy = 0.0;
   for (int i = 0; i < 3; ++i) {
-    x[i] = raster[i].x - ax;
-    y[i] = raster[i].y - ay;
-    invW[i] = 1.0 / clip[i].w;
+    const EdgeNumerators e = edgeNumerators(a, i);
+    s0 += e.e0 * a.invW[i];
+    sx += e.ex * a.invW[i];
+    sy += e.ey * a.invW[i];
   }
-  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-  if (!(area != 0.0)) return false;  // as in planesOf
-  double sx = 0.0, sy = 0.0, s0 = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3, to = (i + 2) % 3;
-    s0 += ((x[to] - x[from]) * (0.0 - y[from]) - (y[to] - y[from]) * (0.0 - x[from])) * invW[i];
-    sx += -(y[to] - y[from]) * invW[i];
-    sy += (x[to] - x[from]) * invW[i];
-  }
-  const double invW0 = s0 / area, zx = sx / area, zy = sy / area;
+  const double invW0 = s0 / a.area, zx = sx / a.area, zy = sy / a.area;
   c.key0 = Real(ctx.keyA + ctx.keyB * invW0);
   c.keyX = Real(ctx.keyB * zx);
   c.keyY = Real(ctx.keyB * zy);
@@ -118,18 +115,26 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
 template <typename Real>
 void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges, bool clipped,
                 const SetupContext& ctx, const CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
-  Planes p;
-  planesOf(clip, raster, c.anchorX, c.anchorY, p);  // has area: setupCoverage accepted it
+  // The anchored barycentric planes l_i = l0 + lx dx + ly dy. The area is not zero: the
+  // same computation let setupCoverage accept the triangle.
+  const Anchored a = anchoredOf(clip, raster, c.anchorX, c.anchorY);
+  double l0[3], lx[3], ly[3];
+  for (int i = 0; i < 3; ++i) {
+    const EdgeNumerators e = edgeNumerators(a, i);
+    l0[i] = e.e0 / a.area;
+    lx[i] = e.ex / a.area;
+    ly[i] = e.ey / a.area;
+  }
   for (int i = 0; i < 3; ++i) {
     s.w[i] = Real(clip[i].w);
-    s.invW[i] = Real(p.invW[i]);
-    s.l0[i] = Real(p.l0[i]);
-    s.lx[i] = Real(p.lx[i]);
-    s.ly[i] = Real(p.ly[i]);
+    s.invW[i] = Real(a.invW[i]);
+    s.l0[i] = Real(l0[i]);
+    s.lx[i] = Real(lx[i]);
+    s.ly[i] = Real(ly[i]);
     // |grad l_i| by sqrt of the sum of squares (hypot costs more than the rest of the set-up),
     // unless a square overflowed or underflowed.
-    const double squares = p.lx[i] * p.lx[i] + p.ly[i] * p.ly[i];
-    const double length = std::isnormal(squares) ? std::sqrt(squares) : std::hypot(p.lx[i], p.ly[i]);
+    const double squares = lx[i] * lx[i] + ly[i] * ly[i];
+    const double length = std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx[i], ly[i]);
     s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(1.0 / length);
   }
 
@@ -143,10 +148,10 @@ void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned i
   const double u = ctx.unitRoundoff;
   double epsL = 0.0, gradient = 0.0, lMax = 0.0;
   for (int i = 0; i < 3; ++i) {
-    const double g = std::fabs(p.lx[i]) + std::fabs(p.ly[i]);
-    epsL = std::max(epsL, 4.0 * u * (std::fabs(p.l0[i]) + g * R));
+    const double g = std::fabs(lx[i]) + std::fabs(ly[i]);
+    epsL = std::max(epsL, 4.0 * u * (std::fabs(l0[i]) + g * R));
     gradient = std::max(gradient, g);
-    lMax = std::max(lMax, std::fabs(p.l0[i]) + g * R);
+    lMax = std::max(lMax, std::fabs(l0[i]) + g * R);
   }
   const double wMin = std::min({clip[0].w, clip[1].w, clip[2].w});
   const double wMax = std::max({clip[0].w, clip[1].w, clip[2].w});

@@ -92,8 +92,8 @@ template <typename Real>
 void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned innerEdges, bool clipped,
                 const SetupContext& ctx, const CoverageSetup<Real>& c, ShadeSetup<Real>& s);
 
-// Both halves at once: snaps and sets up one sub-triangle from its clip-space vertices and raster positions.
-// `innerEdges` has bit i set when the edge opposite vertex i runs inside the source triangle
+// Both halves at once: snaps and sets up one sub-triangle from its clip-space vertices and
+// raster positions. `innerEdges` has bit i set when the edge opposite vertex i runs inside the source triangle
 // (a diagonal of a clipped polygon's fan); `clipped` when the sub-triangle came from clipping.
 // Returns false when it covers no pixel centre (zero snapped area, or no centre of the
 // viewport inside its bounding box).
