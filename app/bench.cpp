@@ -32,11 +32,11 @@ std::string xml(const std::string& text) {
   return out;
 }
 
-// Where bench writes the EXR it times: the system's temporary folder, one name per process,
-// removed however the timing ends.
-// EXR writing takes seconds a frame (ZIP): it is timed at most this many times.
+// EXR writing takes about a second a frame (ZIP): it is timed at most this many times.
 constexpr int kExrRuns = 3;
 
+// Where bench writes the EXR it times: the system's temporary folder, one name per process,
+// removed however the timing ends.
 struct TemporaryFile {
   std::string path;
   TemporaryFile() {
