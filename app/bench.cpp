@@ -86,6 +86,11 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   BenchSetting lean = make("perspective-float-8bit-nodiag", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
   lean.raster.diagnostics = false;
   settings.push_back(lean);
+  // What culling back faces saves where the scene allows it (Culling::kAuto); elsewhere this row
+  // draws the same triangles as the default.
+  BenchSetting all = make("perspective-float-8bit-nocull", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+  all.raster.culling = Culling::kNone;
+  settings.push_back(all);
   return settings;
 }
 

@@ -46,6 +46,12 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
                                               {"standard", DepthMapping::kStandard}},
           CLI::ignore_case))
       ->default_str("inverse-w");
+  command->add_option("--cull", s.raster.culling,
+                      "rasterizer back faces: auto culls them where they cannot be seen (a closed solid "
+                      "wholly beyond the near plane, docs/rasterizer.md), none draws them")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Culling>{{"auto", Culling::kAuto}, {"none", Culling::kNone}}, CLI::ignore_case))
+      ->default_str("auto");
   command->add_option("--subpixel-bits", s.raster.subpixelBits,
                       "fraction bits of snapped vertex positions used for coverage")
       ->check(CLI::Range(1, 16))

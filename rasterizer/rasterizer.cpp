@@ -39,6 +39,9 @@ const char* precisionName(Precision precision) {
 const char* depthMappingName(DepthMapping mapping) {
   return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
 }
+const char* cullingName(Culling culling) {
+  return culling == Culling::kAuto ? "auto" : "none";
+}
 const char* kernelIsaName(KernelIsa isa) {
   switch (isa) {
     case KernelIsa::kSse2: return "sse2";
@@ -96,6 +99,7 @@ struct Frame {
   std::vector<glm::dvec2> raster;    // per mesh vertex, when its outcode is 0
   std::vector<std::uint8_t> outcode;  // per mesh vertex (clip.h)
   std::vector<double> largest;   // per transform block: max |world coordinate|, at least 1
+  std::vector<double> nearestW;  // per transform block: min clip w
   std::vector<SetupBlock<Real>> blocks;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
   std::vector<const SetupSource*> blockSource;
@@ -161,9 +165,10 @@ struct Pipeline {
     frame.outcode.resize(positions.size());
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
+    frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
-      double largest = 1.0;
+      double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
       for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
         const glm::dvec3 p(positions[i]);
         const glm::dvec4 c = clipFromWorld * glm::dvec4(p, 1.0);
@@ -173,8 +178,10 @@ struct Pipeline {
         frame.outcode[i] = std::uint8_t(volume.outcode(c));
         if (frame.outcode[i] == 0) frame.raster[i] = rasterOf(c);  // what emit() would compute
         largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+        nearestW = std::min(nearestW, c.w);
       }
       frame.largest[b] = largest;
+      frame.nearestW[b] = nearestW;
     });
     // Each clip coordinate is a 4-term dot product in double (p_3 = 1):
     // error <= 4 u sum_j |M_rj| |p_j| <= 4 u (max|p| sum_{j<3} |M_rj| + |M_r3|).
@@ -187,6 +194,13 @@ struct Pipeline {
       bound = std::max(bound, linear * maxCoordinate + std::fabs(clipFromWorld[3][r]));
     }
     context.clipError = 4.0 * 0x1p-53 * bound;
+    // Back faces (docs/rasterizer.md): when every vertex lies beyond the near plane, so does
+    // the whole solid, and every view ray starts outside it. clipError covers the rounding of
+    // the computed w.
+    const double nearestW =
+        frame.nearestW.empty() ? 0.0 : *std::min_element(frame.nearestW.begin(), frame.nearestW.end());
+    context.cullBackFaces = options.culling == Culling::kAuto && scene.mesh.closedSolid &&
+                            nearestW - context.clipError > scene.camera.zNear();
   }
 
   glm::dvec2 rasterOf(const glm::dvec4& c) const {
@@ -322,8 +336,9 @@ kernel::Outputs outputPlanes(Framebuffer& fb, const Mesh& mesh, bool diagnostics
   return out;
 }
 
+// Returns whether the frame culled back faces.
 template <typename Real>
-void renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
+bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
                  StageTimes& times) {
   auto t0 = std::chrono::steady_clock::now();
   Pipeline<Real> p(scene, options, frame);
@@ -360,6 +375,7 @@ void renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
     }
   });
   times.tilesMs = millisecondsSince(t0);
+  return p.context.cullBackFaces;
 }
 
 void checkSubpixelBits(const RasterOptions& options) {
@@ -403,9 +419,9 @@ Rasterizer::~Rasterizer() = default;
 
 void Rasterizer::render(const Scene& scene, Framebuffer& target) {
   if (options_.precision == Precision::kFloat) {
-    renderFrame(scene, options_, workspace_->single, target, times_);
+    culled_ = renderFrame(scene, options_, workspace_->single, target, times_);
   } else {
-    renderFrame(scene, options_, workspace_->twice, target, times_);
+    culled_ = renderFrame(scene, options_, workspace_->twice, target, times_);
   }
   target.attributes[channels::header::kRenderer] = "raster";
   target.attributes[channels::header::kMode] = interpolationName(options_.interpolation);
@@ -413,6 +429,7 @@ void Rasterizer::render(const Scene& scene, Framebuffer& target) {
   target.attributes["rastercheck.subpixelBits"] = std::to_string(options_.subpixelBits);
   target.attributes["rastercheck.depthMapping"] = depthMappingName(options_.depthMapping);
   target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
+  target.attributes["rastercheck.cull"] = culled_ ? "back" : "none";
   // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
   // raster positions themselves are far more accurate than that.
   char band[32];

@@ -24,6 +24,14 @@ enum class DepthMapping {
               // infinite far plane): in float, 2^-24 z / n relative near d = 1
 };
 
+// Back faces: a triangle that is clockwise on screen faces away from the eye.
+enum class Culling {
+  kAuto,  // cull back faces when they cannot be seen: the mesh is a closed solid
+          // (Mesh::closedSolid) and lies wholly beyond the near plane, so every view ray starts
+          // outside it and meets a front face first (docs/rasterizer.md, "Back faces")
+  kNone,  // draw every triangle
+};
+
 // The instruction set of the pixel kernels. Every level runs the same sequence of IEEE
 // operations lane by lane (no FMA, no approximate reciprocals), so the output bits are the same
 // on every level; auto picks the widest the CPU has.
@@ -35,6 +43,7 @@ const char* kernelIsaName(KernelIsa isa);
 KernelIsa resolveKernelIsa(KernelIsa isa);
 const char* precisionName(Precision precision);
 const char* depthMappingName(DepthMapping mapping);
+const char* cullingName(Culling culling);
 
 struct RasterOptions {
   Interpolation interpolation = Interpolation::kPerspective;  // how barycentrics are recovered
@@ -44,12 +53,14 @@ struct RasterOptions {
   int threads = 0;       // worker threads; 0 = all cores
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
   KernelIsa isa = KernelIsa::kAuto;
+  Culling culling = Culling::kAuto;  // never changes a pixel the depth test would keep
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real
 // renderer does. render() writes tri.id, bary.b0..b2, depth.z, every mesh attribute
 // (attr.<name>.<c>) and, with options.diagnostics, bound.bary, bound.depth, edge.dist and
-// depth.tie (docs/numerics.md), plus the header attributes recording the settings; every
+// depth.tie (docs/numerics.md), plus the header attributes recording the settings (and
+// rastercheck.cull: "back" when the frame culled back faces, else "none"); every
 // pixel of every channel is written, so `target`'s planes are reused when its size is
 // unchanged. No RGB preview. Throws usageError when subpixelBits does not fit the image size.
 // Wall-clock time of each stage of the last frame (rasterizer.cpp's stages 1, 2, 3 and 4).
@@ -67,12 +78,15 @@ class Rasterizer {
   void render(const Scene& scene, Framebuffer& target);
   const RasterOptions& options() const { return options_; }
   const StageTimes& stageTimes() const { return times_; }
+  // Whether the last frame culled back faces (options().culling kAuto, and the scene allowed it).
+  bool culledBackFaces() const { return culled_; }
 
  private:
   struct Workspace;
   RasterOptions options_;
   std::unique_ptr<Workspace> workspace_;
   StageTimes times_;
+  bool culled_ = false;
 };
 
 // One frame with a fresh Rasterizer, plus the RGB preview.

@@ -78,11 +78,12 @@ struct SetupContext {
   double unitRoundoff;  // of the per-pixel arithmetic: 2^-24 (float) or 2^-53 (double)
   double clipError;     // bound on the absolute error of the double world-to-clip transform
   double keyA, keyB;    // depth key = keyA + keyB / w
+  bool cullBackFaces;   // setupCoverage rejects clockwise (back-facing) sub-triangles
 };
 
 // The two halves of the set-up. setupCoverage snaps and sets up what the coverage and depth
 // pass needs, and returns false when the sub-triangle covers no pixel centre (zero snapped
-// area, or no centre of the viewport inside its bounding box). setupShade, given a set-up
+// area, or no centre of the viewport inside its bounding box) or is culled as a back face. setupShade, given a set-up
 // that setupCoverage accepted, computes what resolve needs; the tiles call it only for the
 // set-ups that win a pixel (docs/rasterizer.md), and it gives the same bits wherever it runs.
 template <typename Real>

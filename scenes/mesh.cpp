@@ -40,6 +40,7 @@ Attribute& Mesh::addAttribute(const std::string& name, int components) {
 void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart) {
   const bool first = into.positions.empty() && into.triangles.empty();
   const auto base = static_cast<unsigned>(into.positions.size());
+  into.closedSolid = false;  // two solids may overlap: their union is not known to be one
   if (first) {
     into.attributes.clear();
     for (const Attribute& a : part.attributes) into.attributes.push_back({a.name, a.components, {}});

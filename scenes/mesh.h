@@ -20,6 +20,12 @@ struct Mesh {
   std::vector<glm::vec3> positions;    // world space
   std::vector<glm::uvec3> triangles;   // indices into positions; (b0, b1, b2) follow this order
   std::vector<Attribute> attributes;
+  // The triangles bound a solid: the surface is closed, does not cross itself, and every
+  // triangle is counter-clockwise seen from outside. A ray that starts outside the solid then
+  // meets a front face first, so the rasterizer may cull back faces (docs/rasterizer.md,
+  // "Back faces"). Only a scene that guarantees it by construction sets it; the tests check
+  // it for every built-in scene that does (tests/scenes/closed_solid_test.cpp).
+  bool closedSolid = false;
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }

@@ -18,6 +18,7 @@ Scene makeBlob(SceneArgs& args) {
                      float(-r * std::sin(theta) * std::sin(phi)));
   });
   addVertexNormals(mesh);
+  mesh.closedSolid = true;  // r > 0 at every angle: a solid star-shaped about the origin
   const CameraSpec camera = lookAt({0.0, 0.0, 3.4}, {0.0, 0.0, 0.0}, 40.0, 0.1, 1920, 1080);
   return Scene{"blob", "", std::move(mesh), Camera(camera, "scene blob")};
 }

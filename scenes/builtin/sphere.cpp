@@ -14,6 +14,7 @@ Scene makeSphere(SceneArgs& args) {
                      float(-std::sin(theta) * std::sin(phi)));
   });
   addVertexNormals(mesh);
+  mesh.closedSolid = true;
   const CameraSpec camera = lookAt({0.0, 0.8, 2.8}, {0.0, 0.0, 0.0}, 50.0, 0.1);
   return Scene{"sphere", "", std::move(mesh), Camera(camera, "scene sphere")};
 }

@@ -12,7 +12,12 @@ Mesh makeUvSphereMesh(int stacks, int slices,
   for (int i = 0; i <= stacks; ++i) {
     const double theta = M_PI * i / stacks;
     for (int j = 0; j <= slices; ++j) {
-      const double phi = 2.0 * M_PI * j / slices;
+      // The seam's second column (j = slices) takes the first one's angle, 0 rather than a
+      // rounded 2 pi, and each pole row takes one angle for all its columns (sin(pi) rounds to
+      // 1.2e-16, not 0): repeated positions are the same bit for bit, so the surface closes
+      // exactly (Mesh::closedSolid).
+      const bool pole = i == 0 || i == stacks;
+      const double phi = pole ? 0.0 : 2.0 * M_PI * (j % slices) / slices;
       mesh.positions.push_back(position(theta, phi));
       uvs.push_back(float(double(j) / slices));
       uvs.push_back(float(double(i) / stacks));

@@ -9,7 +9,9 @@
 namespace rc::builtin {
 
 // position(theta, phi) gives the surface point for polar angle theta in [0, pi] and azimuth
-// phi in [0, 2 pi]. Adds "uv" = (phi / 2pi, theta / pi); the caller adds normals.
+// phi in [0, 2 pi]. Adds "uv" = (phi / 2pi, theta / pi); the caller adds normals. The seam
+// column and the pole rows repeat their positions exactly, so a position function that is
+// continuous in phi gives a closed surface.
 Mesh makeUvSphereMesh(int stacks, int slices,
                       const std::function<glm::vec3(double theta, double phi)>& position);
 

@@ -60,6 +60,7 @@ Scene makeClosed(SceneArgs& args) {
   const int level = int(args.getInt("level", 3, 0, 6));
   Builder b("closed", lookAt({0.0, 0.0, 3.2}, {0.0, 0.0, 0.0}, 45.0, 0.1, 192, 192));
   b.mesh() = jitteredSphere(seed, level, 0.15);
+  b.mesh().closedSolid = true;
   return b.finish();
 }
 

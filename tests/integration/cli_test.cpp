@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include "core/exr_io.h"
 #include "tests/run_command.h"
 
 namespace {
@@ -104,9 +105,22 @@ TEST(Cli, UsageErrorsAreExitTwo) {
   for (const char* args : {"", "frobnicate", "check --no-such-flag", "check --max-bary nan",
                            "check --max-bary -1", "check --threads -1", "check --mode sideways",
                            "check no-such-scene", "check blob:tris=abc", "render floor",
-                           "check --size 0x10"}) {
+                           "check --size 0x10", "check --cull front"}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.exitCode, 2) << "rastercheck " << args << "\n" << r.output;
+  }
+}
+
+// The header says what the frame did: the sphere is a closed solid, so auto culls its back
+// faces unless asked not to, or unless the eye is inside it.
+TEST(Cli, CullSettingIsRecordedAsWhatTheFrameDid) {
+  const fs::path dir = freshDir();
+  const std::string out = (dir / "s.exr").string();
+  for (const auto& [args, cull] : std::vector<std::pair<std::string, std::string>>{
+           {"", "back"}, {" --cull none", "none"}, {" --cull auto --eye 0,0,0 --target 0,0,-1", "none"}}) {
+    const CliRun r = run("render sphere -o " + out + args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(rc::readExr(out).attributes.at("rastercheck.cull"), cull) << args;
   }
 }
 
@@ -156,7 +170,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
   ASSERT_EQ(j["format_version"], 1);
   const auto& rows = j["rows"];
-  ASSERT_EQ(rows.size(), 8u);
+  ASSERT_EQ(rows.size(), 9u);
   int defaults = 0;
   double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3;
   for (const auto& row : rows) {
@@ -203,7 +217,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     ++lines;
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), 24) << "25 columns in every line: " << line;
   }
-  EXPECT_EQ(lines, 9);  // header + 8 settings
+  EXPECT_EQ(lines, 10);  // header + 9 settings
   std::ifstream svgFile(dir / "b.svg");
   const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
   EXPECT_NE(svg.find("<svg"), std::string::npos);

@@ -58,6 +58,7 @@ TEST_P(HardCase, CoverageEqualsTheExactOracle) {
   for (int bits : {4, 8}) {
     RasterOptions options;
     options.subpixelBits = bits;
+    options.culling = Culling::kNone;  // every triangle (culling: the next test)
     const auto raster = byTriangle(coveredPixels(scene, options));
     const Oracle exact(scene, bits);
     int ambiguous = 0, compared = 0;
@@ -78,6 +79,45 @@ TEST_P(HardCase, CoverageEqualsTheExactOracle) {
                 GetParam().c_str(), compared, bits, ambiguous);
     EXPECT_LE(ambiguous, compared / 10 + 1);
   }
+}
+
+// Culling (Culling::kAuto) drops exactly the triangles whose snapped area the oracle finds
+// clockwise from the eye, and only in scenes that declare a closed solid.
+TEST_P(HardCase, CullingDropsExactlyTheSnappedBackFaces) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  RasterOptions none;
+  none.culling = Culling::kNone;
+  const auto all = byTriangle(coveredPixels(scene, none));
+  const auto culled = byTriangle(coveredPixels(scene, RasterOptions{}));
+  if (!scene.mesh.closedSolid) {
+    EXPECT_EQ(culled, all);
+    return;
+  }
+  const Oracle exact(scene, RasterOptions{}.subpixelBits);
+  int dropped = 0, kept = 0, ambiguous = 0;
+  for (std::size_t t = 0; t < scene.mesh.triangleCount(); ++t) {
+    const glm::uvec3 tri = scene.mesh.triangles[t];
+    int ties = 0;
+    const auto p0 = exact.snapped(tri.x, ties), p1 = exact.snapped(tri.y, ties), p2 = exact.snapped(tri.z, ties);
+    if (ties > 0) {
+      ++ambiguous;
+      continue;
+    }
+    // Twice the signed area in raster space (y down): positive is clockwise from the eye.
+    const std::int64_t area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p1[1] - p0[1]) * (p2[0] - p0[0]);
+    const auto find = [](const auto& map, std::size_t index) {
+      const auto it = map.find(std::uint32_t(index));
+      return it == map.end() ? std::vector<std::uint32_t>{} : it->second;
+    };
+    const std::vector<std::uint32_t> expected = area > 0 ? std::vector<std::uint32_t>{} : find(all, t);
+    EXPECT_EQ(find(culled, t), expected) << GetParam() << ": triangle " << t;
+    if (area > 0 && !find(all, t).empty()) ++dropped;
+    if (area < 0 && !expected.empty()) ++kept;
+  }
+  std::printf("[oracle] %s: culling dropped %d covering triangles, kept %d (%d with a snapping tie skipped)\n",
+              GetParam().c_str(), dropped, kept, ambiguous);
+  EXPECT_GT(dropped, 0);
+  EXPECT_GT(kept, 0);
 }
 
 TEST_P(HardCase, CoverageIgnoresVertexRotation) {

@@ -133,6 +133,7 @@ TEST(Watertight, RandomMeshesHaveNoHolesNoDoubleCoversAndMatchTheOracle) {
     const RandomMesh r = makeMesh(rng, kind);
     const Scene& scene = r.scene;
     RasterOptions options;
+    options.culling = Culling::kNone;  // front and back faces both count
     const auto pairs = coveredPixels(scene, options);
     const oracle::Oracle exact(scene, options.subpixelBits);
     std::map<std::uint32_t, std::vector<std::uint32_t>> raster;

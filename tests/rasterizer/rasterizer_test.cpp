@@ -171,6 +171,92 @@ TEST(Rasterizer, WritesExactlyTheScenesAttributes) {
   EXPECT_EQ(fb.attributes.at("rastercheck.mode"), "perspective");
 }
 
+// The sign convention: a triangle counter-clockwise seen from the eye is a front face. A lone
+// triangle is no closed solid; the flag is set here only to reach the cull.
+TEST(Rasterizer, CullingDropsTrianglesClockwiseFromTheEyeAndOnlyThem) {
+  const glm::vec3 a{-1.0f, -0.8f, 0.0f}, b{1.0f, -0.8f, 0.0f}, c{0.0f, 0.9f, 0.0f};  // CCW seen from +z
+  const auto covered = [](const Framebuffer& fb) {
+    int n = 0;
+    for (std::uint32_t id : fb.find(channels::kTriangleId)->uints) n += id != channels::kNoTriangle;
+    return n;
+  };
+  for (const bool clockwise : {false, true}) {
+    Scene scene = clockwise ? testing::makeTriangleScene({a, c, b}) : testing::makeTriangleScene({a, b, c});
+    const int drawn = covered(rasterize(scene, options(Precision::kFloat)));
+    EXPECT_GT(drawn, 300);
+    scene.mesh.closedSolid = true;
+    const Framebuffer culled = rasterize(scene, options(Precision::kFloat));
+    EXPECT_EQ(covered(culled), clockwise ? 0 : drawn);
+    EXPECT_EQ(culled.attributes.at("rastercheck.cull"), "back");
+    RasterOptions none = options(Precision::kFloat);
+    none.culling = Culling::kNone;
+    const Framebuffer all = rasterize(scene, none);
+    EXPECT_EQ(covered(all), drawn);
+    EXPECT_EQ(all.attributes.at("rastercheck.cull"), "none");
+  }
+}
+
+// On a closed solid seen from outside, culling changes no pixel a front face wins: the pixels
+// that change are those a snapped back face won at the silhouette, a sliver of the edge band.
+TEST(Rasterizer, CullingABlobChangesOnlyPixelsBackFacesWon) {
+  const Scene scene = makeBuiltinScene("blob:tris=20000");
+  ASSERT_TRUE(scene.mesh.closedSolid);
+  RasterOptions none = options(Precision::kFloat, 2);
+  none.culling = Culling::kNone;
+  const Framebuffer all = rasterize(scene, none);
+  const Framebuffer culled = rasterize(scene, options(Precision::kFloat, 2));
+  EXPECT_EQ(culled.attributes.at("rastercheck.cull"), "back");
+  const glm::dvec3 eye = scene.camera.spec().eye;
+  const auto backFacing = [&](std::uint32_t t) {
+    const glm::uvec3 tri = scene.mesh.triangles[t];
+    const glm::dvec3 p0(scene.mesh.positions[tri.x]), p1(scene.mesh.positions[tri.y]), p2(scene.mesh.positions[tri.z]);
+    return glm::dot(glm::cross(p1 - p0, p2 - p0), eye - p0) < 0.0;
+  };
+  const auto& idAll = all.find(channels::kTriangleId)->uints;
+  const auto& idCulled = culled.find(channels::kTriangleId)->uints;
+  int covered = 0, changed = 0, backWinners = 0;
+  for (std::uint32_t id : idAll) backWinners += id != channels::kNoTriangle && backFacing(id);
+  for (std::size_t i = 0; i < idAll.size(); ++i) {
+    covered += idAll[i] != channels::kNoTriangle;
+    if (idAll[i] == idCulled[i]) {
+      for (const Channel& channel : all.channels()) {
+        if (channel.type != ChannelType::kFloat) continue;
+        const float x = channel.floats[i], y = culled.find(channel.name)->floats[i];
+        ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << channel.name << " at pixel " << i;
+      }
+      continue;
+    }
+    ++changed;
+    ASSERT_NE(idAll[i], channels::kNoTriangle);
+    EXPECT_TRUE(backFacing(idAll[i])) << "pixel " << i << ": triangle " << idAll[i];
+    EXPECT_TRUE(idCulled[i] == channels::kNoTriangle || !backFacing(idCulled[i])) << "pixel " << i;
+  }
+  EXPECT_EQ(changed, backWinners);  // every pixel a back face won changed, and no other
+  EXPECT_LT(changed, covered / 1000);
+  std::printf("[cull] blob:tris=20000: %d of %d covered pixels changed\n", changed, covered);
+}
+
+// Where a view ray may start inside the solid, auto does not cull: the same bits as none.
+TEST(Rasterizer, CullingIsOffWhenTheNearPlaneCutsTheSolidOrTheEyeIsInside) {
+  for (const glm::dvec3 eye : {glm::dvec3(0.0, 0.0, 0.0), glm::dvec3(0.0, 0.3, 1.02)}) {
+    const Scene sphere = makeBuiltinScene("sphere:segments=24");
+    CameraSpec spec = sphere.camera.spec();
+    spec.eye = eye;
+    spec.target = eye + glm::dvec3(0.0, -0.2, -1.0);
+    const Scene scene{"sphere", "", sphere.mesh, Camera(spec)};
+    ASSERT_TRUE(scene.mesh.closedSolid);
+    RasterOptions none = options(Precision::kFloat);
+    none.culling = Culling::kNone;
+    const Framebuffer all = rasterize(scene, none);
+    const Framebuffer automatic = rasterize(scene, options(Precision::kFloat));
+    EXPECT_EQ(automatic.attributes.at("rastercheck.cull"), "none");
+    EXPECT_EQ(testing::differingChannels(all, automatic), std::vector<std::string>{});
+    int covered = 0;
+    for (std::uint32_t id : automatic.find(channels::kTriangleId)->uints) covered += id != channels::kNoTriangle;
+    EXPECT_GT(covered, int(automatic.pixelCount()) / 4);  // the inside of the sphere is in view
+  }
+}
+
 TEST(Rasterizer, SubpixelBitsTooFineForTheImageAreRefused) {
   const Scene scene = makeBuiltinScene("blob:tris=1000");  // 1920 x 1080
   RasterOptions o;
