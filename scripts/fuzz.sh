@@ -27,7 +27,10 @@ for pair in obj:fuzz_obj gltf:fuzz_gltf scene:fuzz_scene_file exr:fuzz_exr_pair;
   corpus=${pair%%:*}
   target=${pair##*:}
   echo "fuzz: $target for ${seconds}s"
-  if ! "build-fuzz/fuzz/$target" "$work/$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=512 \
+  # The targets write each input to a file under TMPDIR (fuzz/fuzz_input.h): keep it in the
+  # work folder, so nothing is left in the system's temporary folder.
+  mkdir -p "$work/tmp"
+  if ! TMPDIR="$PWD/$work/tmp" "build-fuzz/fuzz/$target" "$work/$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=512 \
        -max_len=65536 -artifact_prefix=build-fuzz/findings/"$target"- -print_final_stats=1 \
        > "build-fuzz/$target.log" 2>&1; then
     echo "fuzz: $target FOUND A PROBLEM; see build-fuzz/$target.log and build-fuzz/findings/"

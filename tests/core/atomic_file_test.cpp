@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "tests/test_files.h"
 
 namespace rc {
 namespace {
@@ -13,9 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(AtomicOutput, AbandonedOutputLeavesNoFile) {
-  const fs::path dir = fs::temp_directory_path() / "rc_atomic_abandoned";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   {
     AtomicOutput out((dir / "result.json").string());
     std::ofstream(out.tempPath()) << "partial";
@@ -24,9 +24,8 @@ TEST(AtomicOutput, AbandonedOutputLeavesNoFile) {
 }
 
 TEST(AtomicOutput, CommitReplacesTheTarget) {
-  const fs::path dir = fs::temp_directory_path() / "rc_atomic_commit";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   std::ofstream(dir / "result.json") << "old";
   writeTextFile((dir / "result.json").string(), "new");
   std::ifstream in(dir / "result.json");

@@ -9,19 +9,12 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "tests/test_files.h"
 
 namespace rc {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path tempDir() {
-  fs::path dir = fs::temp_directory_path() /
-                 ("rc_exr_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::create_directories(dir);
-  return dir;
-}
 
 Framebuffer specialValues() {
   Framebuffer fb(7, 3);
@@ -48,7 +41,8 @@ std::int32_t expectError(const std::string& path) {
 }
 
 TEST(ExrIo, RoundTripIsBitExactForUintAndFloat) {
-  const fs::path path = tempDir() / "special.exr";
+  const testing::TempDir temp;  // removed at the end of the test
+  const fs::path path = temp.path() / "special.exr";
   const Framebuffer original = specialValues();
   writeExr(original, path.string());
   const Framebuffer back = readExr(path.string());
@@ -65,7 +59,8 @@ TEST(ExrIo, RoundTripIsBitExactForUintAndFloat) {
 }
 
 TEST(ExrIo, TruncatedFileIsBadInput) {
-  const fs::path dir = tempDir();
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path();
   writeExr(specialValues(), (dir / "whole.exr").string());
   std::ifstream in(dir / "whole.exr", std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), {});
@@ -74,20 +69,23 @@ TEST(ExrIo, TruncatedFileIsBadInput) {
 }
 
 TEST(ExrIo, EmptyFileIsBadInputAndMissingFileIsIoError) {
-  const fs::path dir = tempDir();
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path();
   std::ofstream(dir / "empty.exr").close();
   EXPECT_EQ(expectError((dir / "empty.exr").string()), int(ExitCode::kBadInput));
   EXPECT_EQ(expectError((dir / "absent.exr").string()), int(ExitCode::kIo));
 }
 
 TEST(ExrIo, NotAnExrIsBadInput) {
-  const fs::path dir = tempDir();
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path();
   std::ofstream(dir / "text.exr") << "this is not an image";
   EXPECT_EQ(expectError((dir / "text.exr").string()), int(ExitCode::kBadInput));
 }
 
 TEST(ExrIo, WriteIntoMissingFolderIsIoErrorAndLeavesNothing) {
-  const fs::path dir = tempDir() / "missing";
+  const testing::TempDir temp;
+  const fs::path dir = temp.path() / "missing";
   try {
     writeExr(specialValues(), (dir / "x.exr").string());
     FAIL() << "expected an error";

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include "core/exr_io.h"
 #include "tests/run_command.h"
+#include "tests/test_files.h"
 
 namespace {
 
@@ -18,13 +19,6 @@ using CliRun = rc::testing::CommandResult;
 
 CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
 
-fs::path freshDir() {
-  const fs::path dir = fs::temp_directory_path() /
-                       (std::string("rc_cli_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 TEST(Cli, HelpAndScenesExitZero) {
   EXPECT_EQ(run("--help").exitCode, 0);
@@ -37,7 +31,8 @@ TEST(Cli, HelpAndScenesExitZero) {
 }
 
 TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const CliRun r = run("check floor cube --out " + (dir / "out").string() + " --json " + (dir / "r.json").string());
   EXPECT_EQ(r.exitCode, 0) << r.output;
   for (const char* file : {"floor.raster.exr", "floor.reference.exr", "floor.heatmap.exr", "cube.heatmap.exr"}) {
@@ -55,7 +50,8 @@ TEST(Cli, AffineCheckExitsOne) {
 }
 
 TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const std::string exr = (dir / "floor.exr").string();
   ASSERT_EQ(run("render floor --backend raster -o " + exr).exitCode, 0);
   const CliRun r = run("compare " + exr + " " + exr + " --json " + (dir / "self.json").string() +
@@ -69,7 +65,8 @@ TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
 }
 
 TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const std::string exr = (dir / "cube.exr").string(), cut = (dir / "cut.exr").string();
   ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
   const std::uintmax_t size = fs::file_size(exr);
@@ -82,7 +79,8 @@ TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {
 }
 
 TEST(Cli, MismatchedSizesAndMissingChannelsAreExitThree) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(), c = (dir / "c.exr").string();
   ASSERT_EQ(run("render cube -o " + a + " --size 64x48").exitCode, 0);
   ASSERT_EQ(run("render cube -o " + b + " --size 64x64").exitCode, 0);
@@ -114,7 +112,8 @@ TEST(Cli, UsageErrorsAreExitTwo) {
 // The header says what the frame did: the sphere is a closed solid, so auto culls its back
 // faces unless asked not to, or unless the eye is inside it.
 TEST(Cli, CullSettingIsRecordedAsWhatTheFrameDid) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const std::string out = (dir / "s.exr").string();
   for (const auto& [args, cull] : std::vector<std::pair<std::string, std::string>>{
            {"", "back"}, {" --cull none", "none"}, {" --cull auto --eye 0,0,0 --target 0,0,-1", "none"}}) {
@@ -125,7 +124,8 @@ TEST(Cli, CullSettingIsRecordedAsWhatTheFrameDid) {
 }
 
 TEST(Cli, MeshFilesTakeCameraOverridesAndAttributeSelection) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   std::ofstream(dir / "tri.obj") << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
   const std::string obj = (dir / "tri.obj").string();
   const CliRun ok = run("check " + obj + " --eye 0,0,4 --target 0,0,0 --fov 40 --size 64x48 --out " + (dir / "out").string());
@@ -163,7 +163,8 @@ TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
 }
 
 TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const CliRun r = run("bench cube --runs 2 -q --json " + (dir / "b.json").string() + " --csv " +
                        (dir / "b.csv").string() + " --chart " + (dir / "b.svg").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -231,7 +232,8 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
 }
 
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
-  const fs::path dir = freshDir();
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
   const std::string exr = (dir / "cube.exr").string();
   ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
   const std::uintmax_t size = fs::file_size(exr);
