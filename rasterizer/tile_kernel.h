@@ -280,10 +280,12 @@ inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, cons
   }
 }
 
-template <typename Real>
+// The attributes go straight into `attributes` (one row of `stride` floats per component): all
+// eight lanes, or with kBlend only the lanes set in `mine`.
+template <bool kBlend, typename Real>
 RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name,
                                    const ShadeSetup<Real>& s, int x, int y, Resolved& r, float* attributes,
-                                   std::size_t stride) {
+                                   std::size_t stride, const i32x8& mine) {
   using V = typename Lanes<Real>::V;
   const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
   const V dx = Real(x - c.anchorX) + iota<Real>();  // small integers: exact
@@ -323,7 +325,13 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
     const float* v1 = a.values + std::size_t(tri.y) * a.components;
     const float* v2 = a.values + std::size_t(tri.z) * a.components;
     for (int j = 0; j < a.components; ++j, ++k) {
-      store(attributes + stride * k, toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j])));
+      const f32x8 value = toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j]));
+      float* into = attributes + stride * k;
+      if constexpr (kBlend) {
+        store(into, mine ? value : load<f32x8>(into));
+      } else {
+        store(into, value);
+      }
     }
   }
 }
@@ -418,8 +426,6 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
 
   // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.
   const int components = out.attributeComponents;
-  std::vector<float> winnerAttributes(std::size_t(components) * kLanes);  // plain floats: a
-  // std::vector of vector types is not reliably over-aligned
   const bool diagnostics = out.edgeDistance != nullptr;
   // Staging rows: id, b0..b2, depth, the four diagnostics, then the attribute components.
   constexpr int kFixedPlanes = 9, kStride = kTileSize + kLanes;
@@ -448,7 +454,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       f32x8 baryBound, depthBound;
       if (lanes == kLanes && !anyOf<kAvx2>(w != w[0]) && w[0] != kEmpty) {  // one winner: no blending
         const ShadeSetup<Real>& s = shadeOf(w[0]);
-        resolveLanes(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride);
+        resolveLanes<false>(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride, valid);
         id = u32x8{} + s.triangle;
         baryBound = f32x8{} + s.baryBound;
         depthBound = f32x8{} + s.depthBound;
@@ -463,7 +469,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
           remaining &= ~laneBits<kAvx2>(mine);
           Resolved own{};
           const ShadeSetup<Real>& s = shadeOf(n);
-          resolveLanes(in, out, job.bins[n], s, x, y, own, winnerAttributes.data(), kLanes);
+          resolveLanes<true>(in, out, job.bins[n], s, x, y, own, attributesAt, kStride, mine);
           id = mine ? u32x8{} + s.triangle : id;
           for (int i = 0; i < 3; ++i) r.bary[i] = mine ? own.bary[i] : r.bary[i];
           r.depth = mine ? own.depth : r.depth;
@@ -471,10 +477,6 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
           r.depthTie = mine ? own.depthTie : r.depthTie;
           baryBound = mine ? f32x8{} + s.baryBound : baryBound;
           depthBound = mine ? f32x8{} + s.depthBound : depthBound;
-          for (int k = 0; k < components; ++k) {
-            float* into = attributesAt + kStride * k;
-            store(into, mine ? load<f32x8>(winnerAttributes.data() + kLanes * k) : load<f32x8>(into));
-          }
         }
       }
       store(at, id);
