@@ -41,9 +41,6 @@ const char* precisionName(Precision precision) {
 const char* depthMappingName(DepthMapping mapping) {
   return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
 }
-const char* cullingName(Culling culling) {
-  return culling == Culling::kAuto ? "auto" : "none";
-}
 const char* kernelIsaName(KernelIsa isa) {
   switch (isa) {
     case KernelIsa::kSse2: return "sse2";
@@ -427,18 +424,16 @@ Rasterizer::Rasterizer(const RasterOptions& options) : options_(options), worksp
 Rasterizer::~Rasterizer() = default;
 
 void Rasterizer::render(const Scene& scene, Framebuffer& target) {
-  if (options_.precision == Precision::kFloat) {
-    culled_ = renderFrame(scene, options_, workspace_->single, target, times_);
-  } else {
-    culled_ = renderFrame(scene, options_, workspace_->twice, target, times_);
-  }
+  const bool culled = options_.precision == Precision::kFloat
+                          ? renderFrame(scene, options_, workspace_->single, target, times_)
+                          : renderFrame(scene, options_, workspace_->twice, target, times_);
   target.attributes[channels::header::kRenderer] = "raster";
   target.attributes[channels::header::kMode] = interpolationName(options_.interpolation);
   target.attributes[channels::header::kPrecision] = precisionName(options_.precision);
   target.attributes["rastercheck.subpixelBits"] = std::to_string(options_.subpixelBits);
   target.attributes["rastercheck.depthMapping"] = depthMappingName(options_.depthMapping);
   target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
-  target.attributes["rastercheck.cull"] = culled_ ? "back" : "none";
+  target.attributes["rastercheck.cull"] = culled ? "back" : "none";
   // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
   // raster positions themselves are far more accurate than that.
   char band[32];

@@ -43,7 +43,6 @@ const char* kernelIsaName(KernelIsa isa);
 KernelIsa resolveKernelIsa(KernelIsa isa);
 const char* precisionName(Precision precision);
 const char* depthMappingName(DepthMapping mapping);
-const char* cullingName(Culling culling);
 
 struct RasterOptions {
   Interpolation interpolation = Interpolation::kPerspective;  // how barycentrics are recovered
@@ -53,7 +52,7 @@ struct RasterOptions {
   int threads = 0;       // worker threads; 0 = all cores
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
   KernelIsa isa = KernelIsa::kAuto;
-  Culling culling = Culling::kAuto;  // never changes a pixel the depth test would keep
+  Culling culling = Culling::kAuto;  // changes no pixel a front face wins (docs/rasterizer.md)
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real
@@ -78,15 +77,12 @@ class Rasterizer {
   void render(const Scene& scene, Framebuffer& target);
   const RasterOptions& options() const { return options_; }
   const StageTimes& stageTimes() const { return times_; }
-  // Whether the last frame culled back faces (options().culling kAuto, and the scene allowed it).
-  bool culledBackFaces() const { return culled_; }
 
  private:
   struct Workspace;
   RasterOptions options_;
   std::unique_ptr<Workspace> workspace_;
   StageTimes times_;
-  bool culled_ = false;
 };
 
 // One frame with a fresh Rasterizer, plus the RGB preview.

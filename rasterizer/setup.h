@@ -83,9 +83,10 @@ struct SetupContext {
 
 // The two halves of the set-up. setupCoverage snaps and sets up what the coverage and depth
 // pass needs, and returns false when the sub-triangle covers no pixel centre (zero snapped
-// area, or no centre of the viewport inside its bounding box) or is culled as a back face. setupShade, given a set-up
-// that setupCoverage accepted, computes what resolve needs; the tiles call it only for the
-// set-ups that win a pixel (docs/rasterizer.md), and it gives the same bits wherever it runs.
+// area, or no centre of the viewport inside its bounding box) or is culled as a back face.
+// setupShade, given a set-up that setupCoverage accepted, computes what resolve needs; the
+// tiles call it only for the set-ups that win a pixel (docs/rasterizer.md), and it gives the
+// same bits wherever it runs.
 template <typename Real>
 bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx,
                    CoverageSetup<Real>& c);

@@ -27,7 +27,7 @@ Scene makeCube(SceneArgs&) {
     mesh.triangles.push_back({base, base + 2, base + 3});
   }
   mesh.attributes.push_back({"uv", 2, std::move(uvs)});
-  mesh.closedSolid = true;
+  mesh.closedSolid = true;  // convex, every face counter-clockwise seen from outside
   const CameraSpec camera = lookAt({2.6, 2.2, 3.4}, {0.0, 0.0, 0.0}, 50.0, 0.1);
   return Scene{"cube", "", std::move(mesh), Camera(camera, "scene cube")};
 }

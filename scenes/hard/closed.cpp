@@ -60,6 +60,9 @@ Scene makeClosed(SceneArgs& args) {
   const int level = int(args.getInt("level", 3, 0, 6));
   Builder b("closed", lookAt({0.0, 0.0, 3.2}, {0.0, 0.0, 0.0}, 45.0, 0.1, 192, 192));
   b.mesh() = jitteredSphere(seed, level, 0.15);
+  // Each vertex moves along its own ray from the centre, so each triangle keeps to the cone its
+  // unjittered self spans and faces away from the centre (det[r0 u0, r1 u1, r2 u2] =
+  // r0 r1 r2 det[u0, u1, u2] > 0): a closed solid for every seed and level.
   b.mesh().closedSolid = true;
   return b.finish();
 }

@@ -23,7 +23,7 @@ namespace {
 //     triangle is clockwise and seen from outside counter-clockwise;
 //  3. the solid angles the triangles subtend at c sum to 4 pi.
 // By 2, projecting the surface from c onto a sphere around c is orientation-preserving on every
-// triangle; by 1 it is then a covering of the sphere, whose degree 3 makes 1: each ray from c
+// triangle; by 1 it is then a covering of the sphere, of degree 1 by 3: each ray from c
 // crosses the surface once. So the surface does not cross itself, and a ray from outside
 // enters the solid (through a front face) before it can leave it.
 std::string closedSolidProblem(const Mesh& mesh) {
