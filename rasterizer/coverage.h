@@ -19,12 +19,15 @@ struct EdgeFunctions {
   std::int64_t a[3], b[3], ox[3], oy[3], bias[3];
 };
 
-// Edge functions of the snapped triangle (x[i], y[i]), raster space with y down. Returns false
-// for a zero-area triangle, which covers nothing.
-inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3],
+// Twice the signed area of the snapped triangle (x[i], y[i]), raster space with y down:
+// positive when it is clockwise on screen.
+inline std::int64_t snappedArea(const std::int64_t x[3], const std::int64_t y[3]) {
+  return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+}
+
+// Edge functions of the snapped triangle, given its snappedArea (not zero).
+inline void makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3], std::int64_t area,
                               EdgeFunctions& e) {
-  const std::int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-  if (area == 0) return false;
   const std::int64_t sign = area > 0 ? 1 : -1;
   for (int i = 0; i < 3; ++i) {
     const int from = (i + 1) % 3, to = (i + 2) % 3;  // edge opposite vertex i
@@ -40,6 +43,14 @@ inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3],
     const std::int64_t topLeft = std::int64_t(e.a[i] > 0) | (std::int64_t(e.a[i] == 0) & std::int64_t(e.b[i] > 0));
     e.bias[i] = topLeft - 1;
   }
+}
+
+// As above, from the vertices alone. Returns false for a zero-area triangle, which covers
+// nothing.
+inline bool makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3], EdgeFunctions& e) {
+  const std::int64_t area = snappedArea(x, y);
+  if (area == 0) return false;
+  makeEdgeFunctions(x, y, area, e);
   return true;
 }
 

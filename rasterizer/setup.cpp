@@ -62,10 +62,10 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
     xf[i] = static_cast<std::int64_t>(roundToInteger(raster[i].x * scale));
     yf[i] = static_cast<std::int64_t>(roundToInteger(raster[i].y * scale));
   }
-  // Twice the signed area of the snapped triangle. Under the camera contract (right-handed view
-  // space looking down -Z, raster y down) a triangle counter-clockwise seen from the eye has a
-  // negative one: a back face has a positive one.
-  const std::int64_t area = (xf[1] - xf[0]) * (yf[2] - yf[0]) - (yf[1] - yf[0]) * (xf[2] - xf[0]);
+  // Under the camera contract (right-handed view space looking down -Z, raster y down) a
+  // triangle counter-clockwise seen from the eye has a negative snapped area: a back face has a
+  // positive one.
+  const std::int64_t area = snappedArea(xf, yf);
   if (area == 0 || (ctx.cullBackFaces && area > 0)) return false;
   // Pixels whose centre (2x+1) * 2^(bits-1) lies within the snapped bounding box; nothing
   // more is computed for a triangle that has none (most sub-pixel triangles).
@@ -78,7 +78,7 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
   c.maxY = int(std::min<std::int64_t>(ctx.height - 1, floorShift(maxYf - half, bits)));
   if (c.minX > c.maxX || c.minY > c.maxY) return false;
   EdgeFunctions edges{};
-  makeEdgeFunctions(xf, yf, edges);  // true: the area is not zero
+  makeEdgeFunctions(xf, yf, area, edges);
   c.flags = 0;
   for (int i = 0; i < 3; ++i) {  // each below 2^30 in magnitude (coverage.h)
     c.a[i] = std::int32_t(edges.a[i]), c.b[i] = std::int32_t(edges.b[i]);
