@@ -28,6 +28,7 @@
 #include "core/preview.h"
 #include "rasterizer/clip.h"
 #include "rasterizer/setup.h"
+#include "rasterizer/setup_batch.h"
 #include "rasterizer/tile_kernel.h"
 
 namespace rc {
@@ -116,6 +117,9 @@ struct Pipeline {
   std::size_t blockSize;
   ClipVolume<double> volume;
   SetupContext context{};
+  // The batch set-up for the kernels' instruction set.
+  unsigned (*batchSetup)(const glm::uvec3*, const glm::dvec4*, const glm::dvec2*, const SetupContext&,
+                         CoverageSetup<Real>*);
 
   Pipeline(const Scene& s, const RasterOptions& o, Frame<Real>& workspace)
       : scene(s), options(o), frame(workspace), width(s.camera.width()), height(s.camera.height()) {
@@ -143,6 +147,11 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
+    if (resolveKernelIsa(o.isa) == KernelIsa::kAvx2) {
+      batchSetup = batch::setupCoverageAvx2;
+    } else {
+      batchSetup = batch::setupCoverageSse2;
+    }
     context.unitRoundoff = std::is_same_v<Real, float> ? 0x1p-24 : 0x1p-53;
     const double n = s.camera.zNear(), f = s.camera.zFar();
     if (o.depthMapping == DepthMapping::kInverseW) {
@@ -224,20 +233,40 @@ struct Pipeline {
     block.source.push_back({triangle, clipped});
   }
 
+  // Whole triangles (every vertex inside the view volume) go through the batch set-up four at
+  // a time; a clipped triangle first flushes the batch, so set-ups stay in triangle order.
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
     const auto& triangles = scene.mesh.triangles;
     const auto& clip = frame.clip;
+    glm::uvec3 batch[batch::kLanes];
+    std::uint32_t batchIds[batch::kLanes];
+    int pending = 0;
+    const auto flush = [&] {
+      if (pending == 0) return;
+      for (int k = pending; k < batch::kLanes; ++k) batch[k] = batch[0];  // lanes ignored below
+      CoverageSetup<Real> c[batch::kLanes];
+      const unsigned accepted = batchSetup(batch, frame.clip.data(), frame.raster.data(), context, c);
+      for (int k = 0; k < pending; ++k) {
+        if (!((accepted >> k) & 1u)) continue;
+        prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
+        block.coverage.push_back(c[k]);
+        block.source.push_back({batchIds[k], -1});
+      }
+      pending = 0;
+    };
     for (std::size_t t = begin; t < end; ++t) {
       const glm::uvec3 tri = triangles[t];
       const unsigned c0 = frame.outcode[tri.x], c1 = frame.outcode[tri.y], c2 = frame.outcode[tri.z];
       if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
-      const glm::dvec4 v[3] = {clip[tri.x], clip[tri.y], clip[tri.z]};
       const auto id = static_cast<std::uint32_t>(t);
       if ((c0 | c1 | c2) == 0) {
-        const glm::dvec2 raster[3] = {frame.raster[tri.x], frame.raster[tri.y], frame.raster[tri.z]};
-        emit(block, id, v, raster, -1);
+        batch[pending] = tri;
+        batchIds[pending] = id;
+        if (++pending == batch::kLanes) flush();
         continue;
       }
+      flush();
+      const glm::dvec4 v[3] = {clip[tri.x], clip[tri.y], clip[tri.z]};
       const ClipVertex<double> in[3] = {{v[0], {1, 0, 0}}, {v[1], {0, 1, 0}}, {v[2], {0, 0, 1}}};
       ClipVertex<double> poly[kMaxClipVertices];
       const int n = clipPolygon(in, volume, c0 | c1 | c2, poly);
@@ -254,6 +283,7 @@ struct Pipeline {
         emit(block, id, sub, raster, int(block.clipped.size()) - 1);
       }
     }
+    flush();
   }
 
   template <typename Fn>

@@ -18,6 +18,7 @@
 #include "rasterizer/coverage.h"
 #include "rasterizer/interpolate.h"
 #include "rasterizer/setup.h"
+#include "rasterizer/setup_batch.h"
 
 namespace rc::kernel {
 
@@ -245,16 +246,32 @@ inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, ShadeSetup<R
   s.clipMap = source.clipped;
 }
 
-// shadeSetupOf for the set-ups at bins[winners[0..count)]. Their records, the mesh's triangles
-// and the vertices are scattered through memory: each is prefetched a few set-ups ahead of its
-// use, the record first, then the triangle it names, then that triangle's vertices.
-template <typename Real>
+// shadeSetupOf for the set-ups at bins[winners[0..count)]: whole triangles four at a time
+// through the batch set-up (setup_batch.h, the same bits), clipped sub-triangles one by one.
+// Their records, the mesh's triangles and the vertices are scattered through memory: each is
+// prefetched a few set-ups ahead of its use, the record first, then the triangle it names,
+// then that triangle's vertices.
+template <bool kAvx2, typename Real>
 inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, const std::uint32_t* winners,
                           std::size_t count, ShadeSetup<Real>* shades) {
   constexpr std::size_t kRecordsAhead = 8, kTrianglesAhead = 4, kVerticesAhead = 2;
   const auto source = [&](std::size_t i) -> const SetupSource& {
     const std::uint32_t name = bins[winners[i]];
     return in.source[name >> kBlockShift][name & kLocalMask];
+  };
+  glm::uvec3 tris[batch::kLanes];
+  const CoverageSetup<Real>* coverage[batch::kLanes];
+  ShadeSetup<Real>* into[batch::kLanes];
+  ShadeSetup<Real> spare;
+  int pending = 0;
+  const auto flush = [&] {
+    for (int k = pending; k < batch::kLanes; ++k) tris[k] = tris[0], coverage[k] = coverage[0], into[k] = &spare;
+    if constexpr (kAvx2) {
+      batch::setupShadeAvx2(tris, in.vertexClip, in.vertexRaster, *in.context, coverage, into);
+    } else {
+      batch::setupShadeSse2(tris, in.vertexClip, in.vertexRaster, *in.context, coverage, into);
+    }
+    pending = 0;
   };
   for (std::size_t i = 0; i < count; ++i) {
     if (i + kRecordsAhead < count) {
@@ -276,8 +293,20 @@ inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, cons
         }
       }
     }
-    shadeSetupOf(in, bins[winners[i]], shades[i]);
+    const std::uint32_t name = bins[winners[i]];
+    const SetupSource& own = in.source[name >> kBlockShift][name & kLocalMask];
+    if (own.clipped >= 0) {
+      shadeSetupOf(in, name, shades[i]);
+      continue;
+    }
+    shades[i].triangle = own.triangle;
+    shades[i].clipMap = -1;
+    tris[pending] = in.triangles[own.triangle];
+    coverage[pending] = &in.coverage[name >> kBlockShift][name & kLocalMask];
+    into[pending] = &shades[i];
+    if (++pending == batch::kLanes) flush();
   }
+  if (pending > 0) flush();
 }
 
 // The attributes go straight into `attributes` (one row of `stride` floats per component): all
@@ -421,7 +450,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     }
   }
   shades.resize(winners.size());
-  shadeSetupsOf(in, job.bins, winners.data(), winners.size(), shades.data());
+  shadeSetupsOf<kAvx2>(in, job.bins, winners.data(), winners.size(), shades.data());
   const auto shadeOf = [&](std::uint32_t n) -> const ShadeSetup<Real>& { return shades[std::size_t(slot[n])]; };
 
   // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.

@@ -1,0 +1,319 @@
+// setupCoverage for four triangles at once (setup_batch.h), in GCC vector extensions. The
+// snapped coordinates are carried twice: as int64 lanes for the exact area and the narrow
+// test, and as doubles (integers below 2^30, so exact) for everything else, where SSE2 and
+// AVX2 have the operations that int64 lanes lack (shifts, compares, conversions).
+#include "rasterizer/setup_batch.h"
+
+#include <emmintrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+// Vectors never cross a call boundary (tile_kernel.h).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace rc::batch {
+namespace {
+
+typedef double f64x4 __attribute__((vector_size(32)));
+typedef std::int64_t i64x4 __attribute__((vector_size(32)));
+typedef std::int32_t i32x4 __attribute__((vector_size(16)));
+typedef float f32x4 __attribute__((vector_size(16)));
+
+#define RC_BATCH_INLINE inline __attribute__((always_inline))
+
+template <typename To, typename From>
+RC_BATCH_INLINE To bitsAs(const From& v) {
+  static_assert(sizeof(To) == sizeof(From));
+  To t;
+  std::memcpy(&t, &v, sizeof t);
+  return t;
+}
+
+// 1.5 * 2^52: x + kMagic, for |x| < 2^51, holds round(x) in its low mantissa bits (setup.cpp's
+// roundToInteger).
+constexpr double kMagic = 0x1.8p52;
+
+RC_BATCH_INLINE f64x4 roundToInteger(const f64x4& x) { return (x + kMagic) - kMagic; }
+// floor and ceil of a multiple of a power of two below 2^51 (a shifted integer): exact.
+RC_BATCH_INLINE f64x4 floorOf(const f64x4& x) {
+  const f64x4 r = roundToInteger(x);
+  return r > x ? r - 1.0 : r;
+}
+RC_BATCH_INLINE f64x4 ceilOf(const f64x4& x) {
+  const f64x4 r = roundToInteger(x);
+  return r < x ? r + 1.0 : r;
+}
+RC_BATCH_INLINE f64x4 minOf(const f64x4& a, const f64x4& b) { return a < b ? a : b; }
+RC_BATCH_INLINE f64x4 maxOf(const f64x4& a, const f64x4& b) { return a > b ? a : b; }
+RC_BATCH_INLINE i64x4 minOf(const i64x4& a, const i64x4& b) { return a < b ? a : b; }
+RC_BATCH_INLINE i64x4 maxOf(const i64x4& a, const i64x4& b) { return a > b ? a : b; }
+// fabs, and std::max and std::min as the standard defines them (the first argument unless the
+// second is larger or smaller), so that every lane picks what setupShade picks.
+RC_BATCH_INLINE f64x4 absOf(const f64x4& v) {
+  return bitsAs<f64x4>(bitsAs<i64x4>(v) & std::int64_t(0x7FFFFFFFFFFFFFFF));
+}
+RC_BATCH_INLINE f64x4 stdMax(const f64x4& a, const f64x4& b) { return a < b ? b : a; }
+RC_BATCH_INLINE f64x4 stdMin(const f64x4& a, const f64x4& b) { return b < a ? b : a; }
+// Integral doubles within int32 (the caller zeroes lanes it will not use) to int32.
+RC_BATCH_INLINE i32x4 toInt32(const f64x4& v) { return __builtin_convertvector(v, i32x4); }
+
+// setup.cpp's Anchored and EdgeNumerators, lane by lane: the vertices relative to the anchor
+// pixel's centre (ax, ay), their 1/w and the doubled area; the numerators of l_i.
+struct Anchored {
+  f64x4 x[3], y[3], invW[3], area;
+};
+RC_BATCH_INLINE Anchored anchoredOf(const f64x4 rx[3], const f64x4 ry[3], const f64x4 w[3], const f64x4& ax,
+                                    const f64x4& ay) {
+  Anchored a;
+  for (int i = 0; i < 3; ++i) {
+    a.x[i] = rx[i] - ax;
+    a.y[i] = ry[i] - ay;
+    a.invW[i] = 1.0 / w[i];
+  }
+  a.area = (a.x[1] - a.x[0]) * (a.y[2] - a.y[0]) - (a.y[1] - a.y[0]) * (a.x[2] - a.x[0]);
+  return a;
+}
+struct EdgeNumerators {
+  f64x4 e0, ex, ey;
+};
+RC_BATCH_INLINE EdgeNumerators edgeNumerators(const Anchored& a, int i) {
+  const int from = (i + 1) % 3, to = (i + 2) % 3;
+  return {(a.x[to] - a.x[from]) * (0.0 - a.y[from]) - (a.y[to] - a.y[from]) * (0.0 - a.x[from]),
+          -(a.y[to] - a.y[from]), a.x[to] - a.x[from]};
+}
+
+// Raster x, y and clip w of the lanes' vertices.
+RC_BATCH_INLINE void gatherVertices(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                                    f64x4 rx[3], f64x4 ry[3], f64x4 w[3]) {
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec2 &r0 = raster[tris[0][i]], &r1 = raster[tris[1][i]];
+    const glm::dvec2 &r2 = raster[tris[2][i]], &r3 = raster[tris[3][i]];
+    rx[i] = f64x4{r0.x, r1.x, r2.x, r3.x};
+    ry[i] = f64x4{r0.y, r1.y, r2.y, r3.y};
+    w[i] = f64x4{clip[tris[0][i]].w, clip[tris[1][i]].w, clip[tris[2][i]].w, clip[tris[3][i]].w};
+  }
+}
+
+template <typename Real>
+RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                        const glm::dvec2* raster, const SetupContext& ctx,
+                                        CoverageSetup<Real> c[kLanes]) {
+  const int bits = ctx.subpixelBits;
+  const double scale = double(std::int64_t(1) << bits), invScale = 1.0 / scale;
+  f64x4 rx[3], ry[3], w[3];
+  gatherVertices(tris, clip, raster, rx, ry, w);
+  // Snapping, as setupCoverage: round to nearest, ties to even. The int64 lanes take the
+  // integer out of the sum's bits.
+  const i64x4 magicBits = bitsAs<i64x4>(f64x4{} + kMagic);
+  f64x4 xr[3], yr[3];
+  i64x4 xf[3], yf[3];
+  for (int i = 0; i < 3; ++i) {
+    const f64x4 sx = rx[i] * scale + kMagic, sy = ry[i] * scale + kMagic;
+    xf[i] = bitsAs<i64x4>(sx) - magicBits;
+    yf[i] = bitsAs<i64x4>(sy) - magicBits;
+    xr[i] = sx - kMagic;
+    yr[i] = sy - kMagic;
+  }
+  const i64x4 area = (xf[1] - xf[0]) * (yf[2] - yf[0]) - (yf[1] - yf[0]) * (xf[2] - xf[0]);
+  i64x4 accept = area != 0;
+  if (ctx.cullBackFaces) accept &= area <= 0;
+  // The bounding box of pixel centres: ceil / floor of (coordinate - half) / 2^bits.
+  const double half = 0.5 * scale;
+  const f64x4 minXr = minOf(xr[0], minOf(xr[1], xr[2])), maxXr = maxOf(xr[0], maxOf(xr[1], xr[2]));
+  const f64x4 minYr = minOf(yr[0], minOf(yr[1], yr[2])), maxYr = maxOf(yr[0], maxOf(yr[1], yr[2]));
+  const f64x4 minX = maxOf(f64x4{}, ceilOf((minXr - half) * invScale));
+  const f64x4 minY = maxOf(f64x4{}, ceilOf((minYr - half) * invScale));
+  const f64x4 maxX = minOf(f64x4{} + double(ctx.width - 1), floorOf((maxXr - half) * invScale));
+  const f64x4 maxY = minOf(f64x4{} + double(ctx.height - 1), floorOf((maxYr - half) * invScale));
+  accept &= (minX <= maxX) & (minY <= maxY);
+  if (!(accept[0] | accept[1] | accept[2] | accept[3])) return 0u;
+
+  // Edge functions (coverage.h's makeEdgeFunctions), sign-normalised by the area's sign.
+  const i64x4 positive = area > 0;
+  f64x4 ea[3], eb[3];
+  i64x4 flags{};
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3, to = (i + 2) % 3;
+    const f64x4 a = yr[from] - yr[to], b = xr[to] - xr[from];
+    ea[i] = positive ? a : -a;
+    eb[i] = positive ? b : -b;
+    const i64x4 topLeft = (ea[i] > 0.0) | ((ea[i] == 0.0) & (eb[i] > 0.0));
+    flags |= ~topLeft & std::int64_t(CoverageSetup<Real>::kNotTopLeft << i);
+  }
+  // The narrow test, spans clamped to 2^30 so that no product overflows (a span that large
+  // already fails it).
+  const i64x4 limit = i64x4{} + (std::int64_t(1) << 30), one = i64x4{} + (std::int64_t(1) << bits);
+  const i64x4 spanX = maxOf(xf[0], maxOf(xf[1], xf[2])) - minOf(xf[0], minOf(xf[1], xf[2]));
+  const i64x4 spanY = maxOf(yf[0], maxOf(yf[1], yf[2])) - minOf(yf[0], minOf(yf[1], yf[2]));
+  const i64x4 sx = minOf(spanX, limit), sy = minOf(spanY, limit);
+  const i64x4 narrow = (spanX < limit) & (spanY < limit) &
+                       (sy * (sx + 9 * one) + sx * (sy + one) + 1 < (std::int64_t(1) << 31));
+  flags |= narrow & std::int64_t(CoverageSetup<Real>::kNarrow);
+
+  // Anchor and the depth key plane, as setupCoverage.
+  const f64x4 anchorX = minX + floorOf((maxX - minX) * 0.5), anchorY = minY + floorOf((maxY - minY) * 0.5);
+  const Anchored an = anchoredOf(rx, ry, w, anchorX + 0.5, anchorY + 0.5);
+  accept &= an.area != 0.0;
+  f64x4 s0{}, sx0{}, sy0{};
+  for (int i = 0; i < 3; ++i) {
+    const EdgeNumerators e = edgeNumerators(an, i);
+    s0 += e.e0 * an.invW[i];
+    sx0 += e.ex * an.invW[i];
+    sy0 += e.ey * an.invW[i];
+  }
+  const f64x4 key0 = ctx.keyA + ctx.keyB * (s0 / an.area);
+  const f64x4 keyX = ctx.keyB * (sx0 / an.area), keyY = ctx.keyB * (sy0 / an.area);
+
+  // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
+  const auto ints = [&](const f64x4& v) { return toInt32(accept ? v : f64x4{}); };
+  const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
+  const i32x4 anchorXi = ints(anchorX), anchorYi = ints(anchorY);
+  i32x4 ai[3], bi[3], oxi[3], oyi[3];
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3;
+    ai[i] = ints(ea[i]), bi[i] = ints(eb[i]), oxi[i] = ints(xr[from]), oyi[i] = ints(yr[from]);
+  }
+  unsigned accepted = 0;
+  for (int k = 0; k < kLanes; ++k) {
+    if (!accept[k]) continue;
+    accepted |= 1u << k;
+    CoverageSetup<Real>& out = c[k];
+    out.minX = minXi[k], out.minY = minYi[k], out.maxX = maxXi[k], out.maxY = maxYi[k];
+    out.anchorX = anchorXi[k], out.anchorY = anchorYi[k];
+    for (int i = 0; i < 3; ++i) out.a[i] = ai[i][k], out.b[i] = bi[i][k], out.ox[i] = oxi[i][k], out.oy[i] = oyi[i][k];
+    out.flags = std::uint32_t(flags[k]);
+    out.key0 = Real(key0[k]), out.keyX = Real(keyX[k]), out.keyY = Real(keyY[k]);
+  }
+  return accepted;
+}
+
+template <typename Real>
+RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                                 const SetupContext& ctx, const CoverageSetup<Real>* const c[kLanes],
+                                 ShadeSetup<Real>* const s[kLanes]) {
+  f64x4 rx[3], ry[3], w[3], cx[3], cy[3];
+  gatherVertices(tris, clip, raster, rx, ry, w);
+  for (int i = 0; i < 3; ++i) {
+    cx[i] = f64x4{clip[tris[0][i]].x, clip[tris[1][i]].x, clip[tris[2][i]].x, clip[tris[3][i]].x};
+    cy[i] = f64x4{clip[tris[0][i]].y, clip[tris[1][i]].y, clip[tris[2][i]].y, clip[tris[3][i]].y};
+  }
+  // setupShade's anchored planes.
+  const f64x4 ax = f64x4{double(c[0]->anchorX), double(c[1]->anchorX), double(c[2]->anchorX), double(c[3]->anchorX)};
+  const f64x4 ay = f64x4{double(c[0]->anchorY), double(c[1]->anchorY), double(c[2]->anchorY), double(c[3]->anchorY)};
+  const Anchored an = anchoredOf(rx, ry, w, ax + 0.5, ay + 0.5);
+  f64x4 l0[3], lx[3], ly[3], height[3];
+  for (int i = 0; i < 3; ++i) {
+    const EdgeNumerators e = edgeNumerators(an, i);
+    l0[i] = e.e0 / an.area;
+    lx[i] = e.ex / an.area;
+    ly[i] = e.ey / an.area;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const f64x4 squares = lx[i] * lx[i] + ly[i] * ly[i];
+    __m128d half[2];
+    std::memcpy(half, &squares, sizeof half);
+    half[0] = _mm_sqrt_pd(half[0]), half[1] = _mm_sqrt_pd(half[1]);
+    f64x4 length;
+    std::memcpy(&length, half, sizeof length);
+    const i64x4 normal = (squares >= std::numeric_limits<double>::min()) & (squares <= std::numeric_limits<double>::max());
+    if (!(normal[0] & normal[1] & normal[2] & normal[3])) {
+      for (int k = 0; k < kLanes; ++k) {
+        if (!normal[k]) length[k] = std::hypot(lx[i][k], ly[i][k]);
+      }
+    }
+    height[i] = 1.0 / length;
+  }
+  // The error bound, as setupShade.
+  f64x4 R;
+  for (int k = 0; k < kLanes; ++k) {
+    const CoverageSetup<Real>& b = *c[k];
+    R[k] = std::max({b.anchorX - b.minX, b.maxX - b.anchorX, b.anchorY - b.minY, b.maxY - b.anchorY, 0}) + 0.0;
+  }
+  const double u = ctx.unitRoundoff, fourU = 4.0 * u, sixU = 6.0 * u;
+  f64x4 epsL{}, gradient{}, lMax{};
+  for (int i = 0; i < 3; ++i) {
+    const f64x4 g = absOf(lx[i]) + absOf(ly[i]);
+    epsL = stdMax(epsL, fourU * (absOf(l0[i]) + g * R));
+    gradient = stdMax(gradient, g);
+    lMax = stdMax(lMax, absOf(l0[i]) + g * R);
+  }
+  const f64x4 wMin = stdMin(stdMin(w[0], w[1]), w[2]), wMax = stdMax(stdMax(w[0], w[1]), w[2]);
+  const f64x4 rho = wMax / wMin;
+  const double spread = 0.5 * std::max(ctx.width, ctx.height) * ctx.clipError;
+  f64x4 delta{};
+  for (int i = 0; i < 3; ++i) {
+    const f64x4 ndc = stdMax(absOf(cx[i]), absOf(cy[i])) / w[i];
+    delta = stdMax(delta, spread * (1.0 + ndc) / w[i]);
+  }
+  f64x4 largest = absOf(rx[0]);
+  for (const f64x4& v : {rx[1], rx[2], ry[0], ry[1], ry[2]}) largest = stdMax(largest, absOf(v));
+  delta += 0x1p-50 * (largest + 1.0);
+  epsL += 3.0 * delta * gradient * (1.0 + lMax);
+  const f64x4 lFactor = stdMax(f64x4{} + 1.0, lMax);
+  const f64x4 baryBound = (4.0 * rho * epsL * lFactor + sixU) + 0x1p-23;
+  const f64x4 depthBound = 6.0 * rho * epsL * lFactor + sixU + 0x1p-23;
+
+  for (int k = 0; k < kLanes; ++k) {
+    ShadeSetup<Real>& out = *s[k];
+    for (int i = 0; i < 3; ++i) {
+      out.w[i] = Real(w[i][k]);
+      out.invW[i] = Real(an.invW[i][k]);
+      out.l0[i] = Real(l0[i][k]);
+      out.lx[i] = Real(lx[i][k]);
+      out.ly[i] = Real(ly[i][k]);
+      out.edgeHeight[i] = Real(height[i][k]);
+    }
+    out.baryBound = float(baryBound[k]);
+    out.depthBound = float(depthBound[k]);
+  }
+}
+
+}  // namespace
+
+unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                           const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                           const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+__attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                           const glm::dvec2* raster, const SetupContext& ctx,
+                                                           CoverageSetup<float> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+__attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                           const glm::dvec2* raster, const SetupContext& ctx,
+                                                           CoverageSetup<double> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+
+
+void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                    const SetupContext& ctx, const CoverageSetup<float>* const c[kLanes],
+                    ShadeSetup<float>* const s[kLanes]) {
+  setupShade4(tris, clip, raster, ctx, c, s);
+}
+void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                    const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
+                    ShadeSetup<double>* const s[kLanes]) {
+  setupShade4(tris, clip, raster, ctx, c, s);
+}
+__attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                    const glm::dvec2* raster, const SetupContext& ctx,
+                                                    const CoverageSetup<float>* const c[kLanes],
+                                                    ShadeSetup<float>* const s[kLanes]) {
+  setupShade4(tris, clip, raster, ctx, c, s);
+}
+__attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                    const glm::dvec2* raster, const SetupContext& ctx,
+                                                    const CoverageSetup<double>* const c[kLanes],
+                                                    ShadeSetup<double>* const s[kLanes]) {
+  setupShade4(tris, clip, raster, ctx, c, s);
+}
+
+}  // namespace rc::batch
