@@ -227,7 +227,10 @@ struct Pipeline {
   void emit(SetupBlock<Real>& block, std::uint32_t triangle, const glm::dvec4 sub[3], const glm::dvec2 raster[3],
             int clipped) const {
     CoverageSetup<Real> c;
-    if (!setupCoverage(sub, raster, context, c)) return;
+    if (setupCoverage(sub, raster, context, c)) append(block, c, triangle, clipped);
+  }
+
+  static void append(SetupBlock<Real>& block, const CoverageSetup<Real>& c, std::uint32_t triangle, int clipped) {
     prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
     block.coverage.push_back(c);
     block.source.push_back({triangle, clipped});
@@ -238,19 +241,16 @@ struct Pipeline {
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
     const auto& triangles = scene.mesh.triangles;
     const auto& clip = frame.clip;
-    glm::uvec3 batch[batch::kLanes];
-    std::uint32_t batchIds[batch::kLanes];
+    glm::uvec3 pendingTris[batch::kLanes];
+    std::uint32_t pendingIds[batch::kLanes];
     int pending = 0;
     const auto flush = [&] {
       if (pending == 0) return;
-      for (int k = pending; k < batch::kLanes; ++k) batch[k] = batch[0];  // lanes ignored below
+      for (int k = pending; k < batch::kLanes; ++k) pendingTris[k] = pendingTris[0];  // lanes ignored below
       CoverageSetup<Real> c[batch::kLanes];
-      const unsigned accepted = batchSetup(batch, frame.clip.data(), frame.raster.data(), context, c);
+      const unsigned accepted = batchSetup(pendingTris, frame.clip.data(), frame.raster.data(), context, c);
       for (int k = 0; k < pending; ++k) {
-        if (!((accepted >> k) & 1u)) continue;
-        prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
-        block.coverage.push_back(c[k]);
-        block.source.push_back({batchIds[k], -1});
+        if ((accepted >> k) & 1u) append(block, c[k], pendingIds[k], -1);
       }
       pending = 0;
     };
@@ -260,8 +260,8 @@ struct Pipeline {
       if (c0 & c1 & c2) continue;  // all outside one plane: nothing visible
       const auto id = static_cast<std::uint32_t>(t);
       if ((c0 | c1 | c2) == 0) {
-        batch[pending] = tri;
-        batchIds[pending] = id;
+        pendingTris[pending] = tri;
+        pendingIds[pending] = id;
         if (++pending == batch::kLanes) flush();
         continue;
       }
