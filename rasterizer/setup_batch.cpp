@@ -1,15 +1,16 @@
-// setupCoverage for four triangles at once (setup_batch.h), in GCC vector extensions. The
+// setupCoverage and setupShade for four triangles at once (setup_batch.h), in GCC vector
+// extensions; the floating-point formulas are setup_formulas.h's, shared with setup.cpp. The
 // snapped coordinates are carried twice: as int64 lanes for the exact area and the narrow
 // test, and as doubles (integers below 2^30, so exact) for everything else, where SSE2 and
 // AVX2 have the operations that int64 lanes lack (shifts, compares, conversions).
 #include "rasterizer/setup_batch.h"
 
-#include <emmintrin.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+#include "rasterizer/setup_formulas.h"
 
 // Vectors never cross a call boundary (tile_kernel.h).
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -17,8 +18,8 @@
 namespace rc::batch {
 namespace {
 
-typedef double f64x4 __attribute__((vector_size(32)));
-typedef std::int64_t i64x4 __attribute__((vector_size(32)));
+using formulas::f64x4;
+using formulas::i64x4;
 typedef std::int32_t i32x4 __attribute__((vector_size(16)));
 typedef float f32x4 __attribute__((vector_size(16)));
 
@@ -50,40 +51,8 @@ RC_BATCH_INLINE f64x4 minOf(const f64x4& a, const f64x4& b) { return a < b ? a :
 RC_BATCH_INLINE f64x4 maxOf(const f64x4& a, const f64x4& b) { return a > b ? a : b; }
 RC_BATCH_INLINE i64x4 minOf(const i64x4& a, const i64x4& b) { return a < b ? a : b; }
 RC_BATCH_INLINE i64x4 maxOf(const i64x4& a, const i64x4& b) { return a > b ? a : b; }
-// fabs, and std::max and std::min as the standard defines them (the first argument unless the
-// second is larger or smaller), so that every lane picks what setupShade picks.
-RC_BATCH_INLINE f64x4 absOf(const f64x4& v) {
-  return bitsAs<f64x4>(bitsAs<i64x4>(v) & std::int64_t(0x7FFFFFFFFFFFFFFF));
-}
-RC_BATCH_INLINE f64x4 stdMax(const f64x4& a, const f64x4& b) { return a < b ? b : a; }
-RC_BATCH_INLINE f64x4 stdMin(const f64x4& a, const f64x4& b) { return b < a ? b : a; }
 // Integral doubles within int32 (the caller zeroes lanes it will not use) to int32.
 RC_BATCH_INLINE i32x4 toInt32(const f64x4& v) { return __builtin_convertvector(v, i32x4); }
-
-// setup.cpp's Anchored and EdgeNumerators, lane by lane: the vertices relative to the anchor
-// pixel's centre (ax, ay), their 1/w and the doubled area; the numerators of l_i.
-struct Anchored {
-  f64x4 x[3], y[3], invW[3], area;
-};
-RC_BATCH_INLINE Anchored anchoredOf(const f64x4 rx[3], const f64x4 ry[3], const f64x4 w[3], const f64x4& ax,
-                                    const f64x4& ay) {
-  Anchored a;
-  for (int i = 0; i < 3; ++i) {
-    a.x[i] = rx[i] - ax;
-    a.y[i] = ry[i] - ay;
-    a.invW[i] = 1.0 / w[i];
-  }
-  a.area = (a.x[1] - a.x[0]) * (a.y[2] - a.y[0]) - (a.y[1] - a.y[0]) * (a.x[2] - a.x[0]);
-  return a;
-}
-struct EdgeNumerators {
-  f64x4 e0, ex, ey;
-};
-RC_BATCH_INLINE EdgeNumerators edgeNumerators(const Anchored& a, int i) {
-  const int from = (i + 1) % 3, to = (i + 2) % 3;
-  return {(a.x[to] - a.x[from]) * (0.0 - a.y[from]) - (a.y[to] - a.y[from]) * (0.0 - a.x[from]),
-          -(a.y[to] - a.y[from]), a.x[to] - a.x[from]};
-}
 
 // Raster x, y and clip w of the lanes' vertices.
 RC_BATCH_INLINE void gatherVertices(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
@@ -155,17 +124,10 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
 
   // Anchor and the depth key plane, as setupCoverage.
   const f64x4 anchorX = minX + floorOf((maxX - minX) * 0.5), anchorY = minY + floorOf((maxY - minY) * 0.5);
-  const Anchored an = anchoredOf(rx, ry, w, anchorX + 0.5, anchorY + 0.5);
+  const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
+  const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
   accept &= an.area != 0.0;
-  f64x4 s0{}, sx0{}, sy0{};
-  for (int i = 0; i < 3; ++i) {
-    const EdgeNumerators e = edgeNumerators(an, i);
-    s0 += e.e0 * an.invW[i];
-    sx0 += e.ex * an.invW[i];
-    sy0 += e.ey * an.invW[i];
-  }
-  const f64x4 key0 = ctx.keyA + ctx.keyB * (s0 / an.area);
-  const f64x4 keyX = ctx.keyB * (sx0 / an.area), keyY = ctx.keyB * (sy0 / an.area);
+  const formulas::KeyPlane<f64x4> key = formulas::keyPlaneOf(an, ctx);
 
   // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
   const auto ints = [&](const f64x4& v) { return toInt32(accept ? v : f64x4{}); };
@@ -185,7 +147,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
     out.anchorX = anchorXi[k], out.anchorY = anchorYi[k];
     for (int i = 0; i < 3; ++i) out.a[i] = ai[i][k], out.b[i] = bi[i][k], out.ox[i] = oxi[i][k], out.oy[i] = oyi[i][k];
     out.flags = std::uint32_t(flags[k]);
-    out.key0 = Real(key0[k]), out.keyX = Real(keyX[k]), out.keyY = Real(keyY[k]);
+    out.key0 = Real(key.key0[k]), out.keyX = Real(key.keyX[k]), out.keyY = Real(key.keyY[k]);
   }
   return accepted;
 }
@@ -200,74 +162,30 @@ RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4
     cx[i] = f64x4{clip[tris[0][i]].x, clip[tris[1][i]].x, clip[tris[2][i]].x, clip[tris[3][i]].x};
     cy[i] = f64x4{clip[tris[0][i]].y, clip[tris[1][i]].y, clip[tris[2][i]].y, clip[tris[3][i]].y};
   }
-  // setupShade's anchored planes.
-  const f64x4 ax = f64x4{double(c[0]->anchorX), double(c[1]->anchorX), double(c[2]->anchorX), double(c[3]->anchorX)};
-  const f64x4 ay = f64x4{double(c[0]->anchorY), double(c[1]->anchorY), double(c[2]->anchorY), double(c[3]->anchorY)};
-  const Anchored an = anchoredOf(rx, ry, w, ax + 0.5, ay + 0.5);
-  f64x4 l0[3], lx[3], ly[3], height[3];
-  for (int i = 0; i < 3; ++i) {
-    const EdgeNumerators e = edgeNumerators(an, i);
-    l0[i] = e.e0 / an.area;
-    lx[i] = e.ex / an.area;
-    ly[i] = e.ey / an.area;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const f64x4 squares = lx[i] * lx[i] + ly[i] * ly[i];
-    __m128d half[2];
-    std::memcpy(half, &squares, sizeof half);
-    half[0] = _mm_sqrt_pd(half[0]), half[1] = _mm_sqrt_pd(half[1]);
-    f64x4 length;
-    std::memcpy(&length, half, sizeof length);
-    const i64x4 normal = (squares >= std::numeric_limits<double>::min()) & (squares <= std::numeric_limits<double>::max());
-    if (!(normal[0] & normal[1] & normal[2] & normal[3])) {
-      for (int k = 0; k < kLanes; ++k) {
-        if (!normal[k]) length[k] = std::hypot(lx[i][k], ly[i][k]);
-      }
-    }
-    height[i] = 1.0 / length;
-  }
-  // The error bound, as setupShade.
+  // As setupShade.
+  const f64x4 ax = f64x4{double(c[0]->anchorX), double(c[1]->anchorX), double(c[2]->anchorX), double(c[3]->anchorX)} + 0.5;
+  const f64x4 ay = f64x4{double(c[0]->anchorY), double(c[1]->anchorY), double(c[2]->anchorY), double(c[3]->anchorY)} + 0.5;
+  const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
+  const formulas::Planes<f64x4> p = formulas::planesOf(an);
   f64x4 R;
   for (int k = 0; k < kLanes; ++k) {
     const CoverageSetup<Real>& b = *c[k];
     R[k] = std::max({b.anchorX - b.minX, b.maxX - b.anchorX, b.anchorY - b.minY, b.maxY - b.anchorY, 0}) + 0.0;
   }
-  const double u = ctx.unitRoundoff, fourU = 4.0 * u, sixU = 6.0 * u;
-  f64x4 epsL{}, gradient{}, lMax{};
-  for (int i = 0; i < 3; ++i) {
-    const f64x4 g = absOf(lx[i]) + absOf(ly[i]);
-    epsL = stdMax(epsL, fourU * (absOf(l0[i]) + g * R));
-    gradient = stdMax(gradient, g);
-    lMax = stdMax(lMax, absOf(l0[i]) + g * R);
-  }
-  const f64x4 wMin = stdMin(stdMin(w[0], w[1]), w[2]), wMax = stdMax(stdMax(w[0], w[1]), w[2]);
-  const f64x4 rho = wMax / wMin;
-  const double spread = 0.5 * std::max(ctx.width, ctx.height) * ctx.clipError;
-  f64x4 delta{};
-  for (int i = 0; i < 3; ++i) {
-    const f64x4 ndc = stdMax(absOf(cx[i]), absOf(cy[i])) / w[i];
-    delta = stdMax(delta, spread * (1.0 + ndc) / w[i]);
-  }
-  f64x4 largest = absOf(rx[0]);
-  for (const f64x4& v : {rx[1], rx[2], ry[0], ry[1], ry[2]}) largest = stdMax(largest, absOf(v));
-  delta += 0x1p-50 * (largest + 1.0);
-  epsL += 3.0 * delta * gradient * (1.0 + lMax);
-  const f64x4 lFactor = stdMax(f64x4{} + 1.0, lMax);
-  const f64x4 baryBound = (4.0 * rho * epsL * lFactor + sixU) + 0x1p-23;
-  const f64x4 depthBound = 6.0 * rho * epsL * lFactor + sixU + 0x1p-23;
+  const formulas::Bounds<f64x4> bounds = formulas::boundsOf(p, R, rx, ry, cx, cy, w, ctx, false);
 
   for (int k = 0; k < kLanes; ++k) {
     ShadeSetup<Real>& out = *s[k];
     for (int i = 0; i < 3; ++i) {
       out.w[i] = Real(w[i][k]);
       out.invW[i] = Real(an.invW[i][k]);
-      out.l0[i] = Real(l0[i][k]);
-      out.lx[i] = Real(lx[i][k]);
-      out.ly[i] = Real(ly[i][k]);
-      out.edgeHeight[i] = Real(height[i][k]);
+      out.l0[i] = Real(p.l0[i][k]);
+      out.lx[i] = Real(p.lx[i][k]);
+      out.ly[i] = Real(p.ly[i][k]);
+      out.edgeHeight[i] = Real(p.height[i][k]);
     }
-    out.baryBound = float(baryBound[k]);
-    out.depthBound = float(depthBound[k]);
+    out.baryBound = float(bounds.bary[k]);
+    out.depthBound = float(bounds.depth[k]);
   }
 }
 
