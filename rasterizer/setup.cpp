@@ -58,10 +58,9 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
   if (c.minX > c.maxX || c.minY > c.maxY) return false;
   EdgeFunctions edges{};
   makeEdgeFunctions(xf, yf, area, edges);
-  c.flags = 0;
-  for (int i = 0; i < 3; ++i) {  // each below 2^30 in magnitude (coverage.h)
-    c.a[i] = std::int32_t(edges.a[i]), c.b[i] = std::int32_t(edges.b[i]);
-    c.ox[i] = std::int32_t(edges.ox[i]), c.oy[i] = std::int32_t(edges.oy[i]);
+  c.flags = area > 0 ? CoverageSetup<Real>::kPositive : 0u;
+  for (int i = 0; i < 3; ++i) {  // each below 2^29 in magnitude (coverage.h)
+    c.x[i] = std::int32_t(xf[i]), c.y[i] = std::int32_t(yf[i]);
     if (edges.bias[i] != 0) c.flags |= CoverageSetup<Real>::kNotTopLeft << i;
   }
   // |E_i| <= |a_i| |X - ox_i| + |b_i| |Y - oy_i| + 1 with |a_i| <= the box's height, |b_i| <=

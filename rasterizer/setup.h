@@ -17,31 +17,41 @@
 namespace rc {
 
 // What the coverage and depth pass reads for every (set-up, tile) pair, kept apart from the
-// resolve's data so that pass streams through half the memory.
+// resolve's data so that pass streams through half the memory. It holds the snapped vertices,
+// not the edge functions made from them (edges() makes those, a few integer operations per
+// record and tile): so a float record is 64 bytes, one cache line (88 with the edges).
 template <typename Real>
-struct CoverageSetup {
+struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
   int minX, minY, maxX, maxY;  // pixels whose centres may be covered, inclusive, in the viewport
   int anchorX, anchorY;        // the pixel whose centre the planes are anchored at
-  // Edge functions E_i = a[i] (X - ox[i]) + b[i] (Y - oy[i]) of the snapped triangle
-  // (coverage.h, subpixelBits fraction bits, |coordinates| < 2^29), sign-normalised.
-  std::int32_t a[3], b[3], ox[3], oy[3];
-  std::uint32_t flags;         // kNotTopLeft << i: edge i is not top-left; kNarrow (below)
+  // The snapped vertices (coverage.h: subpixelBits fraction bits, |coordinates| < 2^29).
+  std::int32_t x[3], y[3];
+  std::uint32_t flags;         // kNotTopLeft << i: edge i is not top-left; kNarrow, kPositive (below)
   Real key0, keyX, keyY;       // depth-test key plane (larger is nearer)
 
   static constexpr std::uint32_t kNotTopLeft = 1u;  // shifted by the edge number
   // Every edge value over the bounding box, and up to 8 pixels right of it, is below 2^31:
   // exact in int32 lanes.
   static constexpr std::uint32_t kNarrow = 8u;
+  // The snapped area is positive (coverage.h's snappedArea): the edge functions keep the sign
+  // of the vertex differences; otherwise they are negated.
+  static constexpr std::uint32_t kPositive = 16u;
 
+  // coverage.h's makeEdgeFunctions, with the fill rule's biases from the flags.
   EdgeFunctions edges() const {
     EdgeFunctions e{};
+    const std::int64_t sign = flags & kPositive ? 1 : -1;
     for (int i = 0; i < 3; ++i) {
-      e.a[i] = a[i], e.b[i] = b[i], e.ox[i] = ox[i], e.oy[i] = oy[i];
+      const int from = (i + 1) % 3, to = (i + 2) % 3;  // edge opposite vertex i
+      e.a[i] = sign * (std::int64_t(y[from]) - y[to]);
+      e.b[i] = sign * (std::int64_t(x[to]) - x[from]);
+      e.ox[i] = x[from], e.oy[i] = y[from];
       e.bias[i] = (flags >> i) & kNotTopLeft ? -1 : 0;
     }
     return e;
   }
 };
+static_assert(sizeof(CoverageSetup<float>) == 64, "a float record is one cache line");
 
 // Where a set-up came from: all setupShade needs besides the CoverageSetup. A whole triangle
 // takes its vertices from the frame's per-vertex arrays; a clipped sub-triangle has its own

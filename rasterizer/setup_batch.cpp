@@ -103,7 +103,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   // Edge functions (coverage.h's makeEdgeFunctions), sign-normalised by the area's sign.
   const i64x4 positive = area > 0;
   f64x4 ea[3], eb[3];
-  i64x4 flags{};
+  i64x4 flags = positive & std::int64_t(CoverageSetup<Real>::kPositive);
   for (int i = 0; i < 3; ++i) {
     const int from = (i + 1) % 3, to = (i + 2) % 3;
     const f64x4 a = yr[from] - yr[to], b = xr[to] - xr[from];
@@ -133,11 +133,8 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   const auto ints = [&](const f64x4& v) { return toInt32(accept ? v : f64x4{}); };
   const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
   const i32x4 anchorXi = ints(anchorX), anchorYi = ints(anchorY);
-  i32x4 ai[3], bi[3], oxi[3], oyi[3];
-  for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3;
-    ai[i] = ints(ea[i]), bi[i] = ints(eb[i]), oxi[i] = ints(xr[from]), oyi[i] = ints(yr[from]);
-  }
+  i32x4 xi[3], yi[3];
+  for (int i = 0; i < 3; ++i) xi[i] = ints(xr[i]), yi[i] = ints(yr[i]);
   unsigned accepted = 0;
   for (int k = 0; k < kLanes; ++k) {
     if (!accept[k]) continue;
@@ -145,7 +142,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
     CoverageSetup<Real>& out = c[k];
     out.minX = minXi[k], out.minY = minYi[k], out.maxX = maxXi[k], out.maxY = maxYi[k];
     out.anchorX = anchorXi[k], out.anchorY = anchorYi[k];
-    for (int i = 0; i < 3; ++i) out.a[i] = ai[i][k], out.b[i] = bi[i][k], out.ox[i] = oxi[i][k], out.oy[i] = oyi[i][k];
+    for (int i = 0; i < 3; ++i) out.x[i] = xi[i][k], out.y[i] = yi[i][k];
     out.flags = std::uint32_t(flags[k]);
     out.key0 = Real(key.key0[k]), out.keyX = Real(key.keyX[k]), out.keyY = Real(key.keyY[k]);
   }

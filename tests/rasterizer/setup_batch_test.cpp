@@ -35,10 +35,7 @@ std::string differences(const CoverageSetup<Real>& x, const CoverageSetup<Real>&
   field("minX", x.minX == y.minX), field("minY", x.minY == y.minY);
   field("maxX", x.maxX == y.maxX), field("maxY", x.maxY == y.maxY);
   field("anchorX", x.anchorX == y.anchorX), field("anchorY", x.anchorY == y.anchorY);
-  for (int i = 0; i < 3; ++i) {
-    field("a", x.a[i] == y.a[i]), field("b", x.b[i] == y.b[i]);
-    field("ox", x.ox[i] == y.ox[i]), field("oy", x.oy[i] == y.oy[i]);
-  }
+  for (int i = 0; i < 3; ++i) field("x", x.x[i] == y.x[i]), field("y", x.y[i] == y.y[i]);
   field("flags", x.flags == y.flags);
   field("key0", bitsOf(x.key0) == bitsOf(y.key0));
   field("keyX", bitsOf(x.keyX) == bitsOf(y.keyX));
@@ -205,8 +202,8 @@ TEST(SetupBatch, ComparisonSeesOneBit) {
   d.flags ^= CoverageSetup<float>::kNarrow;
   EXPECT_EQ(differences(c, d), "flags");
   d = c;
-  d.oy[2] += 1;
-  EXPECT_EQ(differences(c, d), "oy");
+  d.y[2] += 1;
+  EXPECT_EQ(differences(c, d), "y");
 }
 
 }  // namespace
