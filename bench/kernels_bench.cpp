@@ -97,7 +97,6 @@ template <typename Real>
 struct TileFixture {
   SetupContext ctx;
   std::vector<CoverageSetup<Real>> coverage;
-  std::vector<SetupSource> source;
   std::vector<std::uint32_t> bins;
   std::vector<glm::uvec3> triangles;
   std::vector<glm::dvec4> vertexClip;
@@ -106,7 +105,6 @@ struct TileFixture {
   std::vector<float> planes;
   kernel::Outputs out{};
   const CoverageSetup<Real>* coverageBlock[1];
-  const SetupSource* sourceBlock[1];
   const ClippedTriangle<Real>* clippedBlock[1] = {nullptr};
   kernel::Input<Real> in{};
 
@@ -125,8 +123,8 @@ struct TileFixture {
       CoverageSetup<Real> cs;
       if (!setupCoverage(c, r, ctx, cs)) continue;
       bins.push_back(std::uint32_t(coverage.size()));
+      cs.source = {std::uint32_t(triangles.size()), -1};
       coverage.push_back(cs);
-      source.push_back({std::uint32_t(triangles.size()), -1});
       const auto first = std::uint32_t(vertexClip.size());
       triangles.push_back({first, first + 1, first + 2});
       vertexClip.insert(vertexClip.end(), c, c + 3);
@@ -144,9 +142,7 @@ struct TileFixture {
     out.attributes.push_back({uv.data(), 2, {next(), next()}});
     out.attributeComponents = 2;
     coverageBlock[0] = coverage.data();
-    sourceBlock[0] = source.data();
     in.coverage = coverageBlock;
-    in.source = sourceBlock;
     in.clipped = clippedBlock;
     in.triangles = triangles.data();
     in.vertexClip = vertexClip.data();

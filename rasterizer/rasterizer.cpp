@@ -88,7 +88,6 @@ constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockS
 template <typename Real>
 struct SetupBlock {
   std::vector<CoverageSetup<Real>> coverage;
-  std::vector<SetupSource> source;                // per set-up, for the tiles' setupShade
   std::vector<ClippedTriangle<Real>> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
 };
@@ -102,7 +101,6 @@ struct Frame {
   std::vector<double> nearestW;  // per transform block: min clip w
   std::vector<SetupBlock<Real>> blocks;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
-  std::vector<const SetupSource*> blockSource;
   std::vector<const ClippedTriangle<Real>*> blockClipped;
   std::vector<std::size_t> binStart;  // per tile + 1
   std::vector<std::uint32_t> binned;  // set-up names, tile by tile
@@ -233,7 +231,7 @@ struct Pipeline {
   static void append(SetupBlock<Real>& block, const CoverageSetup<Real>& c, std::uint32_t triangle, int clipped) {
     prefetchForWriteAhead(block.coverage.data() + block.coverage.size());
     block.coverage.push_back(c);
-    block.source.push_back({triangle, clipped});
+    block.coverage.back().source = {triangle, clipped};
   }
 
   // Whole triangles (every vertex inside the view volume) go through the batch set-up four at
@@ -303,7 +301,6 @@ struct Pipeline {
     parallelFor(blocks, options.threads, [&](int b) {
       SetupBlock<Real>& block = frame.blocks[b];
       block.coverage.clear();
-      block.source.clear();
       block.clipped.clear();
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
@@ -313,7 +310,6 @@ struct Pipeline {
     times.setupMs = millisecondsSince(t0);
     const auto t1 = std::chrono::steady_clock::now();
     frame.blockCoverage.resize(std::size_t(blocks));
-    frame.blockSource.resize(std::size_t(blocks));
     frame.blockClipped.resize(std::size_t(blocks));
     frame.binStart.resize(tiles + 1);
     std::size_t total = 0;
@@ -330,7 +326,6 @@ struct Pipeline {
     parallelFor(blocks, options.threads, [&](int b) {
       SetupBlock<Real>& block = frame.blocks[b];
       frame.blockCoverage[b] = block.coverage.data();
-      frame.blockSource[b] = block.source.data();
       frame.blockClipped[b] = block.clipped.data();
       for (std::size_t i = 0; i < block.coverage.size(); ++i) {
         const auto name = std::uint32_t((std::size_t(b) << kernel::kBlockShift) | i);
@@ -387,7 +382,6 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   const kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
   kernel::Input<Real> in{};
   in.coverage = frame.blockCoverage.data();
-  in.source = frame.blockSource.data();
   in.clipped = frame.blockClipped.data();
   in.vertexClip = frame.clip.data();
   in.vertexRaster = frame.raster.data();
@@ -433,7 +427,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
       pixels.clear();
       kernel::coveredPixelsOf(block.coverage[i], options.subpixelBits, pixels, p.width);
-      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.source[i].triangle, pixel);
+      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.coverage[i].source.triangle, pixel);
     }
   }
   return pairs;

@@ -71,10 +71,7 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
     c.flags |= CoverageSetup<Real>::kNarrow;
   }
 
-  // Anchor: the pixel at the centre of the clipped bounding box.
-  c.anchorX = c.minX + (c.maxX - c.minX) / 2;
-  c.anchorY = c.minY + (c.maxY - c.minY) / 2;
-  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX, c.anchorY);
+  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX(), c.anchorY());
   // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
   // a needle far below the snapping grid. No barycentrics exist for it: drop it.
   if (!(a.area != 0.0)) return false;
@@ -90,7 +87,7 @@ void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned i
                 const SetupContext& ctx, const CoverageSetup<Real>& c, ShadeSetup<Real>& s) {
   // The anchored barycentric planes. The area is not zero: the same computation let
   // setupCoverage accept the triangle.
-  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX, c.anchorY);
+  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX(), c.anchorY());
   const formulas::Planes<double> p = formulas::planesOf(a);
   for (int i = 0; i < 3; ++i) {
     s.w[i] = Real(clip[i].w);
@@ -100,7 +97,7 @@ void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned i
     s.ly[i] = Real(p.ly[i]);
     s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(p.height[i]);
   }
-  const double R = std::max({c.anchorX - c.minX, c.maxX - c.anchorX, c.anchorY - c.minY, c.maxY - c.anchorY, 0}) + 0.0;
+  const double R = std::max({c.anchorX() - c.minX, c.maxX - c.anchorX(), c.anchorY() - c.minY, c.maxY - c.anchorY(), 0}) + 0.0;
   const double rx[3] = {raster[0].x, raster[1].x, raster[2].x}, ry[3] = {raster[0].y, raster[1].y, raster[2].y};
   const double cx[3] = {clip[0].x, clip[1].x, clip[2].x}, cy[3] = {clip[0].y, clip[1].y, clip[2].y};
   const double w[3] = {clip[0].w, clip[1].w, clip[2].w};

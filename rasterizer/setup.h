@@ -16,18 +16,31 @@
 
 namespace rc {
 
+// Where a set-up came from: all setupShade needs besides the CoverageSetup. A whole triangle
+// takes its vertices from the frame's per-vertex arrays; a clipped sub-triangle has its own
+// ClippedTriangle record in its block.
+struct SetupSource {
+  std::uint32_t triangle;  // source triangle index (the tri.id written)
+  std::int32_t clipped;    // index of its ClippedTriangle in the block; -1 = the whole triangle
+};
+
 // What the coverage and depth pass reads for every (set-up, tile) pair, kept apart from the
-// resolve's data so that pass streams through half the memory. It holds the snapped vertices,
-// not the edge functions made from them (edges() makes those, a few integer operations per
-// record and tile): so a float record is 64 bytes, one cache line (88 with the edges).
+// resolve's data so that pass streams through half the memory, and what the tiles' setupShade
+// starts from. It holds the snapped vertices, not the edge functions made from them (edges()
+// makes those, a dozen integer operations per record and tile), and the anchor is a function
+// of the box: so a float record, its source included, is 64 bytes, one cache line.
 template <typename Real>
 struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
   int minX, minY, maxX, maxY;  // pixels whose centres may be covered, inclusive, in the viewport
-  int anchorX, anchorY;        // the pixel whose centre the planes are anchored at
   // The snapped vertices (coverage.h: subpixelBits fraction bits, |coordinates| < 2^29).
   std::int32_t x[3], y[3];
   std::uint32_t flags;         // kNotTopLeft << i: edge i is not top-left; kNarrow, kPositive (below)
   Real key0, keyX, keyY;       // depth-test key plane (larger is nearer)
+  SetupSource source;          // set by the caller of setupCoverage
+
+  // The pixel whose centre the planes are anchored at: the centre of the box, rounded down.
+  int anchorX() const { return minX + (maxX - minX) / 2; }
+  int anchorY() const { return minY + (maxY - minY) / 2; }
 
   static constexpr std::uint32_t kNotTopLeft = 1u;  // shifted by the edge number
   // Every edge value over the bounding box, and up to 8 pixels right of it, is below 2^31:
@@ -52,14 +65,6 @@ struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
   }
 };
 static_assert(sizeof(CoverageSetup<float>) == 64, "a float record is one cache line");
-
-// Where a set-up came from: all setupShade needs besides the CoverageSetup. A whole triangle
-// takes its vertices from the frame's per-vertex arrays; a clipped sub-triangle has its own
-// ClippedTriangle record in its block.
-struct SetupSource {
-  std::uint32_t triangle;  // source triangle index (the tri.id written)
-  std::int32_t clipped;    // index of its ClippedTriangle in the block; -1 = the whole triangle
-};
 
 template <typename Real>
 struct ClippedTriangle {

@@ -122,7 +122,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
                        (sy * (sx + 9 * one) + sx * (sy + one) + 1 < (std::int64_t(1) << 31));
   flags |= narrow & std::int64_t(CoverageSetup<Real>::kNarrow);
 
-  // Anchor and the depth key plane, as setupCoverage.
+  // Anchor (CoverageSetup::anchorX, anchorY) and the depth key plane, as setupCoverage.
   const f64x4 anchorX = minX + floorOf((maxX - minX) * 0.5), anchorY = minY + floorOf((maxY - minY) * 0.5);
   const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
@@ -132,7 +132,6 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
   const auto ints = [&](const f64x4& v) { return toInt32(accept ? v : f64x4{}); };
   const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
-  const i32x4 anchorXi = ints(anchorX), anchorYi = ints(anchorY);
   i32x4 xi[3], yi[3];
   for (int i = 0; i < 3; ++i) xi[i] = ints(xr[i]), yi[i] = ints(yr[i]);
   unsigned accepted = 0;
@@ -141,7 +140,6 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
     accepted |= 1u << k;
     CoverageSetup<Real>& out = c[k];
     out.minX = minXi[k], out.minY = minYi[k], out.maxX = maxXi[k], out.maxY = maxYi[k];
-    out.anchorX = anchorXi[k], out.anchorY = anchorYi[k];
     for (int i = 0; i < 3; ++i) out.x[i] = xi[i][k], out.y[i] = yi[i][k];
     out.flags = std::uint32_t(flags[k]);
     out.key0 = Real(key.key0[k]), out.keyX = Real(key.keyX[k]), out.keyY = Real(key.keyY[k]);
@@ -160,14 +158,14 @@ RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4
     cy[i] = f64x4{clip[tris[0][i]].y, clip[tris[1][i]].y, clip[tris[2][i]].y, clip[tris[3][i]].y};
   }
   // As setupShade.
-  const f64x4 ax = f64x4{double(c[0]->anchorX), double(c[1]->anchorX), double(c[2]->anchorX), double(c[3]->anchorX)} + 0.5;
-  const f64x4 ay = f64x4{double(c[0]->anchorY), double(c[1]->anchorY), double(c[2]->anchorY), double(c[3]->anchorY)} + 0.5;
+  const f64x4 ax = f64x4{double(c[0]->anchorX()), double(c[1]->anchorX()), double(c[2]->anchorX()), double(c[3]->anchorX())} + 0.5;
+  const f64x4 ay = f64x4{double(c[0]->anchorY()), double(c[1]->anchorY()), double(c[2]->anchorY()), double(c[3]->anchorY())} + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
   const formulas::Planes<f64x4> p = formulas::planesOf(an);
   f64x4 R;
   for (int k = 0; k < kLanes; ++k) {
     const CoverageSetup<Real>& b = *c[k];
-    R[k] = std::max({b.anchorX - b.minX, b.maxX - b.anchorX, b.anchorY - b.minY, b.maxY - b.anchorY, 0}) + 0.0;
+    R[k] = std::max({b.anchorX() - b.minX, b.maxX - b.anchorX(), b.anchorY() - b.minY, b.maxY - b.anchorY(), 0}) + 0.0;
   }
   const formulas::Bounds<f64x4> bounds = formulas::boundsOf(p, R, rx, ry, cx, cy, w, ctx, false);
 

@@ -54,7 +54,6 @@ struct Outputs {
 template <typename Real>
 struct Input {
   const CoverageSetup<Real>* const* coverage;       // per block
-  const SetupSource* const* source;                 // per block
   const ClippedTriangle<Real>* const* clipped;      // per block
   const glm::uvec3* triangles;                      // the mesh's
   const glm::dvec4* vertexClip;                     // per mesh vertex: setupShade's inputs
@@ -232,7 +231,7 @@ struct Resolved {
 template <typename Real>
 inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, ShadeSetup<Real>& s) {
   const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
-  const SetupSource& source = in.source[name >> kBlockShift][name & kLocalMask];
+  const SetupSource& source = c.source;
   if (source.clipped < 0) {
     const glm::uvec3 tri = in.triangles[source.triangle];
     const glm::dvec4 clip[3] = {in.vertexClip[tri.x], in.vertexClip[tri.y], in.vertexClip[tri.z]};
@@ -258,7 +257,7 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
   constexpr std::size_t kRecordsAhead = 8, kTrianglesAhead = 4, kVerticesAhead = 2;
   const auto source = [&](std::size_t i) -> const SetupSource& {
     const std::uint32_t name = bins[winners[i]];
-    return in.source[name >> kBlockShift][name & kLocalMask];
+    return in.coverage[name >> kBlockShift][name & kLocalMask].source;
   };
   glm::uvec3 tris[batch::kLanes];
   const CoverageSetup<Real>* coverage[batch::kLanes];
@@ -277,7 +276,6 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
   for (std::size_t i = 0; i < count; ++i) {
     if (i + kRecordsAhead < count) {
       const std::uint32_t name = bins[winners[i + kRecordsAhead]];
-      __builtin_prefetch(&in.source[name >> kBlockShift][name & kLocalMask]);
       __builtin_prefetch(&in.coverage[name >> kBlockShift][name & kLocalMask]);
     }
     if (i + kTrianglesAhead < count) {
@@ -296,7 +294,7 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
       }
     }
     const std::uint32_t name = bins[winners[i]];
-    const SetupSource& own = in.source[name >> kBlockShift][name & kLocalMask];
+    const SetupSource& own = in.coverage[name >> kBlockShift][name & kLocalMask].source;
     if (own.clipped >= 0) {
       shadeSetupOf(in, name, shades[i]);
       continue;
@@ -319,8 +317,8 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
                                    std::size_t stride, const i32x8& mine) {
   using V = typename Lanes<Real>::V;
   const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
-  const V dx = Real(x - c.anchorX) + iota<Real>();  // small integers: exact
-  const Real dy = Real(y - c.anchorY);
+  const V dx = Real(x - c.anchorX()) + iota<Real>();  // small integers: exact
+  const Real dy = Real(y - c.anchorY());
   V l[3];
   for (int i = 0; i < 3; ++i) l[i] = s.l0[i] + s.lx[i] * dx + s.ly[i] * dy;
   const Recovered<V> recovered = in.perspective ? perspectiveCorrect(l, s.invW) : affineWeights(l, s.w);
@@ -409,10 +407,10 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
     const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
     const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
-    const V dx0 = Real(xa - c.anchorX) + iota<Real>();
+    const V dx0 = Real(xa - c.anchorX()) + iota<Real>();
     forEachCoveredChunk<kAvx2>(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, const i32x8& mask) {
       const V dx = dx0 + Real(x - xa);  // small integers: exact
-      const V z = c.key0 + c.keyX * dx + c.keyY * Real(y - c.anchorY);
+      const V z = c.key0 + c.keyX * dx + c.keyY * Real(y - c.anchorY());
       Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
       std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
       const V old = load<V>(nearestAt);

@@ -34,7 +34,6 @@ std::string differences(const CoverageSetup<Real>& x, const CoverageSetup<Real>&
   Differences field;
   field("minX", x.minX == y.minX), field("minY", x.minY == y.minY);
   field("maxX", x.maxX == y.maxX), field("maxY", x.maxY == y.maxY);
-  field("anchorX", x.anchorX == y.anchorX), field("anchorY", x.anchorY == y.anchorY);
   for (int i = 0; i < 3; ++i) field("x", x.x[i] == y.x[i]), field("y", x.y[i] == y.y[i]);
   field("flags", x.flags == y.flags);
   field("key0", bitsOf(x.key0) == bitsOf(y.key0));
