@@ -49,11 +49,11 @@ RC_FORMULA_INLINE double lengthOf(double squares, double lx, double ly) {
   return std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx, ly);
 }
 RC_FORMULA_INLINE f64x4 lengthOf(const f64x4& squares, const f64x4& lx, const f64x4& ly) {
-  __m128d half[2];
-  std::memcpy(half, &squares, sizeof half);
-  half[0] = _mm_sqrt_pd(half[0]), half[1] = _mm_sqrt_pd(half[1]);
-  f64x4 length;
-  std::memcpy(&length, half, sizeof length);
+  // Two SSE2 square roots on the halves, in registers: halves stored to memory and read back
+  // whole cannot be forwarded, a stall that showed in the tiles' setupShade.
+  const __m128d low = _mm_sqrt_pd(__builtin_shufflevector(squares, squares, 0, 1));
+  const __m128d high = _mm_sqrt_pd(__builtin_shufflevector(squares, squares, 2, 3));
+  f64x4 length = __builtin_shufflevector(low, high, 0, 1, 2, 3);
   const i64x4 normal = (squares >= std::numeric_limits<double>::min()) & (squares <= std::numeric_limits<double>::max());
   if (!(normal[0] & normal[1] & normal[2] & normal[3])) {
     for (int k = 0; k < 4; ++k) {
