@@ -60,6 +60,7 @@ KernelIsa resolveKernelIsa(KernelIsa isa) {
 namespace {
 
 using kernel::kTileSize;
+constexpr int kTileShift = 6;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -287,8 +288,14 @@ struct Pipeline {
 
   template <typename Fn>
   void forEachTile(const CoverageSetup<Real>& s, Fn&& fn) const {
-    for (int ty = s.minY / kTileSize; ty <= s.maxY / kTileSize; ++ty) {
-      for (int tx = s.minX / kTileSize; tx <= s.maxX / kTileSize; ++tx) fn(std::size_t(ty) * tilesX + tx);
+    // The box lies in the viewport, so its coordinates are non-negative. (In locals: fn's
+    // stores might alias s as far as the compiler knows, so it would reload and divide at
+    // every step.)
+    static_assert(kTileSize == 1 << kTileShift);
+    const unsigned x0 = unsigned(s.minX) >> kTileShift, x1 = unsigned(s.maxX) >> kTileShift;
+    const unsigned y0 = unsigned(s.minY) >> kTileShift, y1 = unsigned(s.maxY) >> kTileShift;
+    for (unsigned ty = y0; ty <= y1; ++ty) {
+      for (unsigned tx = x0; tx <= x1; ++tx) fn(std::size_t(ty) * tilesX + tx);
     }
   }
 

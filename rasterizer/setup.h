@@ -38,9 +38,10 @@ struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
   Real key0, keyX, keyY;       // depth-test key plane (larger is nearer)
   SetupSource source;          // set by the caller of setupCoverage
 
-  // The pixel whose centre the planes are anchored at: the centre of the box, rounded down.
-  int anchorX() const { return minX + (maxX - minX) / 2; }
-  int anchorY() const { return minY + (maxY - minY) / 2; }
+  // The pixel whose centre the planes are anchored at: the centre of the box, rounded down
+  // (the box is never empty, so the halved width is a shift).
+  int anchorX() const { return minX + int(unsigned(maxX - minX) >> 1); }
+  int anchorY() const { return minY + int(unsigned(maxY - minY) >> 1); }
 
   static constexpr std::uint32_t kNotTopLeft = 1u;  // shifted by the edge number
   // Every edge value over the bounding box, and up to 8 pixels right of it, is below 2^31:

@@ -309,6 +309,22 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
   if (pending > 0) flush();
 }
 
+// One attribute's kComponents components at barycentrics b, from its values at the three
+// vertices, into rows `stride` floats apart: all eight lanes, or with kBlend only `mine`.
+template <bool kBlend, int kComponents, typename V>
+RC_KERNEL_INLINE void interpolateInto(const V b[3], const float* const v[3], float* into, std::size_t stride,
+                                      const i32x8& mine) {
+  using Real = decltype(b[0][0] + 0);
+  for (int j = 0; j < kComponents; ++j, into += stride) {
+    const f32x8 value = toFloat<Real>(b[0] * Real(v[0][j]) + b[1] * Real(v[1][j]) + b[2] * Real(v[2][j]));
+    if constexpr (kBlend) {
+      store(into, mine ? value : load<f32x8>(into));
+    } else {
+      store(into, value);
+    }
+  }
+}
+
 // The attributes go straight into `attributes` (one row of `stride` floats per component): all
 // eight lanes, or with kBlend only the lanes set in `mine`.
 template <bool kBlend, typename Real>
@@ -348,20 +364,19 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
     r.depthTie = toFloat<Real>(in.tieScale * terms * depth);
   }
   const glm::uvec3& tri = in.triangles[s.triangle];
-  int k = 0;
+  float* into = attributes;
   for (const Outputs::Attribute& a : out.attributes) {
-    const float* v0 = a.values + std::size_t(tri.x) * a.components;
-    const float* v1 = a.values + std::size_t(tri.y) * a.components;
-    const float* v2 = a.values + std::size_t(tri.z) * a.components;
-    for (int j = 0; j < a.components; ++j, ++k) {
-      const f32x8 value = toFloat<Real>(b[0] * Real(v0[j]) + b[1] * Real(v1[j]) + b[2] * Real(v2[j]));
-      float* into = attributes + stride * k;
-      if constexpr (kBlend) {
-        store(into, mine ? value : load<f32x8>(into));
-      } else {
-        store(into, value);
-      }
+    const float* v[3] = {a.values + std::size_t(tri.x) * a.components, a.values + std::size_t(tri.y) * a.components,
+                         a.values + std::size_t(tri.z) * a.components};
+    // Unrolled for each count of components (meshes have 1 to 4): a loop's own control cost as
+    // much as its arithmetic.
+    switch (a.components) {
+      case 1: interpolateInto<kBlend, 1>(b, v, into, stride, mine); break;
+      case 2: interpolateInto<kBlend, 2>(b, v, into, stride, mine); break;
+      case 3: interpolateInto<kBlend, 3>(b, v, into, stride, mine); break;
+      default: interpolateInto<kBlend, 4>(b, v, into, stride, mine); break;
     }
+    into += stride * std::size_t(a.components);
   }
 }
 
@@ -407,10 +422,13 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
     const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
     const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
-    const V dx0 = Real(xa - c.anchorX()) + iota<Real>();
+    // Once per set-up, in locals: the compiler cannot tell that the stores below miss c.
+    const int anchorX = c.anchorX(), anchorY = c.anchorY();
+    const Real key0 = c.key0, keyX = c.keyX, keyY = c.keyY;
+    const V dx0 = Real(xa - anchorX) + iota<Real>();
     forEachCoveredChunk<kAvx2>(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, const i32x8& mask) {
       const V dx = dx0 + Real(x - xa);  // small integers: exact
-      const V z = c.key0 + c.keyX * dx + c.keyY * Real(y - c.anchorY());
+      const V z = key0 + keyX * dx + keyY * Real(y - anchorY);
       Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
       std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
       const V old = load<V>(nearestAt);
