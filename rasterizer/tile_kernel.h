@@ -289,7 +289,12 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
         for (const unsigned v : {tri.x, tri.y, tri.z}) {
           __builtin_prefetch(&in.vertexClip[v]);
           __builtin_prefetch(&in.vertexRaster[v]);
-          for (const Outputs::Attribute& a : out.attributes) __builtin_prefetch(a.values + std::size_t(v) * a.components);
+        }
+        for (const Outputs::Attribute& a : out.attributes) {  // one walk of the attributes
+          const std::size_t n = std::size_t(a.components);
+          __builtin_prefetch(a.values + tri.x * n);
+          __builtin_prefetch(a.values + tri.y * n);
+          __builtin_prefetch(a.values + tri.z * n);
         }
       }
     }
