@@ -12,7 +12,7 @@
 // the lower triangle index. All working memory lives in the Rasterizer and is reused.
 #include "rasterizer/rasterizer.h"
 
-#include <emmintrin.h>
+#include <immintrin.h>
 
 #include <algorithm>
 #include <array>
@@ -85,6 +85,52 @@ inline void prefetchForWriteAhead(const void* end) {
 // triangle must stay below 2^20, and block numbers below 4095 so no name equals kEmpty.
 constexpr std::size_t kMaxBlocks = 4094;
 constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockShift) / (kMaxClipVertices - 2) - 1;
+
+// The transform of vertices [begin, end) with AVX2: the scalar loop in Pipeline::transform, one
+// vertex per 4-lane register. Every value takes the same IEEE operations as there, so the same
+// bits: glm's mat4 * vec4 is (m0 x + m1 y) + (m2 z + m3 w), with w = 1 so that m3 w is m3; a
+// distance guard w - x is guard w + (-x); the raster y, (1 - y / w) 0.5 height, has 1 - t as
+// -t + 1. A third of the scalar loop's instructions (callgrind).
+__attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, std::size_t begin, std::size_t end,
+                                                   const glm::dmat4& m, const ClipVolume<double>& volume,
+                                                   double width, double height, glm::dvec4* clip,
+                                                   glm::dvec2* raster, std::uint8_t* outcode, double& largestOut,
+                                                   double& nearestWOut) {
+  const __m256d m0 = _mm256_loadu_pd(&m[0][0]), m1 = _mm256_loadu_pd(&m[1][0]);
+  const __m256d m2 = _mm256_loadu_pd(&m[2][0]), m3 = _mm256_loadu_pd(&m[3][0]);
+  const __m256d guard = _mm256_set1_pd(volume.guard);
+  const __m256d negateXY = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);  // lanes -x, +x, -y, +y
+  const __m128d negateY = _mm_set_pd(-0.0, 0.0), one = _mm_set1_pd(1.0), half = _mm_set1_pd(0.5);
+  const __m128d size = _mm_set_pd(height, width);
+  const bool farPlane = !std::isinf(volume.zFar);
+  double largest = largestOut, nearestW = nearestWOut;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double px = positions[i].x, py = positions[i].y, pz = positions[i].z;
+    const __m256d c = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, _mm256_set1_pd(px)), _mm256_mul_pd(m1, _mm256_set1_pd(py))),
+                                    _mm256_add_pd(_mm256_mul_pd(m2, _mm256_set1_pd(pz)), m3));
+    double* to = reinterpret_cast<double*>(clip + i);  // 16-byte aligned: two streams, as the scalar loop
+    _mm_stream_pd(to, _mm256_castpd256_pd128(c));
+    _mm_stream_pd(to + 2, _mm256_extractf128_pd(c, 1));
+    const __m256d w4 = _mm256_permute4x64_pd(c, 0xFF);
+    const double w = _mm256_cvtsd_f64(w4);
+    // ClipVolume::outcode: planes 2 to 5 are guard w -+ x and guard w -+ y, outside unless >= 0.
+    const __m256d d = _mm256_add_pd(_mm256_mul_pd(guard, w4), _mm256_xor_pd(_mm256_permute4x64_pd(c, 0x50), negateXY));
+    unsigned code = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_NGE_UQ))) << 2;
+    if (!(w - volume.zNear >= 0.0)) code |= 1u;
+    if (farPlane && !(volume.zFar - w >= 0.0)) code |= 2u;
+    outcode[i] = std::uint8_t(code);
+    __m128d r = _mm_setzero_pd();
+    if (code == 0) {
+      const __m128d ndc = _mm_div_pd(_mm256_castpd256_pd128(c), _mm256_castpd256_pd128(w4));
+      r = _mm_mul_pd(_mm_mul_pd(_mm_add_pd(_mm_xor_pd(ndc, negateY), one), half), size);
+    }
+    _mm_stream_pd(reinterpret_cast<double*>(raster + i), r);
+    largest = std::max({largest, std::fabs(px), std::fabs(py), std::fabs(pz)});
+    nearestW = std::min(nearestW, w);
+  }
+  largestOut = largest;
+  nearestWOut = nearestW;
+}
 
 template <typename Real>
 struct SetupBlock {
@@ -174,10 +220,16 @@ struct Pipeline {
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
     frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
+    const bool avx2 = resolveKernelIsa(options.isa) == KernelIsa::kAvx2;
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
-      for (std::size_t i = std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
+      if (avx2) {
+        transformAvx2(positions.data(), std::size_t(b) * kTrianglesPerBlock, end, clipFromWorld, volume,
+                      double(scene.camera.width()), double(scene.camera.height()), frame.clip.data(),
+                      frame.raster.data(), frame.outcode.data(), largest, nearestW);
+      }
+      for (std::size_t i = avx2 ? end : std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
         const glm::dvec3 p(positions[i]);
         const glm::dvec4 c = clipFromWorld * glm::dvec4(p, 1.0);
         // Non-temporal stores: the lines were last read by the other core's tiles, and a
