@@ -25,17 +25,24 @@ inline std::int64_t snappedArea(const std::int64_t x[3], const std::int64_t y[3]
   return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
 }
 
+// a, b, ox and oy of edge i (opposite vertex i) of the snapped triangle, sign-normalised by
+// `sign`, the sign of its snappedArea (+1 or -1). T is the coordinates' integer type.
+template <typename T>
+inline void setEdge(const T x[3], const T y[3], std::int64_t sign, int i, EdgeFunctions& e) {
+  const int from = (i + 1) % 3, to = (i + 2) % 3;
+  // (to - from) x (p - from): a = -(dy), b = dx, sign-normalised.
+  e.a[i] = sign * (std::int64_t(y[from]) - y[to]);
+  e.b[i] = sign * (std::int64_t(x[to]) - x[from]);
+  e.ox[i] = x[from];
+  e.oy[i] = y[from];
+}
+
 // Edge functions of the snapped triangle, given its snappedArea (not zero).
 inline void makeEdgeFunctions(const std::int64_t x[3], const std::int64_t y[3], std::int64_t area,
                               EdgeFunctions& e) {
   const std::int64_t sign = area > 0 ? 1 : -1;
   for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3, to = (i + 2) % 3;  // edge opposite vertex i
-    // (to - from) x (p - from): a = -(dy), b = dx, sign-normalised.
-    e.a[i] = sign * (y[from] - y[to]);
-    e.b[i] = sign * (x[to] - x[from]);
-    e.ox[i] = x[from];
-    e.oy[i] = y[from];
+    setEdge(x, y, sign, i, e);
     // With positive orientation in y-down raster space, a top edge runs horizontally in +x
     // (a == 0, b > 0) and a left edge runs upwards (dy < 0, i.e. a > 0).
     // (Integer arithmetic: GCC 12 turned the boolean form into a byte store and a 64-bit

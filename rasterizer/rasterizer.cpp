@@ -59,8 +59,8 @@ KernelIsa resolveKernelIsa(KernelIsa isa) {
 
 namespace {
 
+using kernel::kTileShift;
 using kernel::kTileSize;
-constexpr int kTileShift = 6;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -86,16 +86,45 @@ inline void prefetchForWriteAhead(const void* end) {
 constexpr std::size_t kMaxBlocks = 4094;
 constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockShift) / (kMaxClipVertices - 2) - 1;
 
-// The transform of vertices [begin, end) with AVX2: the scalar loop in Pipeline::transform, one
-// vertex per 4-lane register. Every value takes the same IEEE operations as there, so the same
-// bits: glm's mat4 * vec4 is (m0 x + m1 y) + (m2 z + m3 w), with w = 1 so that m3 w is m3; a
-// distance guard w - x is guard w + (-x); the raster y, (1 - y / w) 0.5 height, has 1 - t as
-// -t + 1. A third of the scalar loop's instructions (callgrind).
+// Raster position of a clip-space point inside the view volume.
+glm::dvec2 rasterOf(const Camera& camera, const glm::dvec4& c) {
+  return {camera.rasterXFromNdc(c.x / c.w), camera.rasterYFromNdc(c.y / c.w)};
+}
+
+// The transform of positions [begin, end): each vertex's clip position, outcode and (when the
+// outcode is 0) raster position, into the frame's arrays with non-temporal stores, and the
+// largest |world coordinate| and nearest clip w, folded into largest and nearestW. The lines
+// were last read by the other core's tiles, and a store that bypasses the cache need not take
+// them from it first (BM_Frame at 1M, 2 threads: transform about 3.9 down to 2.0 to 2.6 ms; on
+// 1 thread, whose lines are its own, 2.8 up to 3.5 ms). Set-up reads them back no slower.
+void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t end, const glm::dmat4& m,
+                     const ClipVolume<double>& volume, const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
+                     std::uint8_t* outcode, double& largest, double& nearestW) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const glm::dvec3 p(positions[i]);
+    const glm::dvec4 c = m * glm::dvec4(p, 1.0);
+    double* to = reinterpret_cast<double*>(clip + i);
+    _mm_stream_pd(to, _mm_set_pd(c.y, c.x));
+    _mm_stream_pd(to + 2, _mm_set_pd(c.w, c.z));
+    outcode[i] = std::uint8_t(volume.outcode(c));
+    glm::dvec2 r(0.0);
+    if (outcode[i] == 0) r = rasterOf(camera, c);  // what emit() would compute
+    _mm_stream_pd(reinterpret_cast<double*>(raster + i), _mm_set_pd(r.y, r.x));
+    largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    nearestW = std::min(nearestW, c.w);
+  }
+}
+
+// transformScalar with AVX2, one vertex per 4-lane register. Every value takes the same IEEE
+// operations as there, so the same bits: glm's mat4 * vec4 is (m0 x + m1 y) + (m2 z + m3 w),
+// with w = 1 so that m3 w is m3; a distance guard w - x is guard w + (-x); the raster y,
+// (1 - y / w) 0.5 height, has 1 - t as -t + 1. A third of the scalar loop's instructions
+// (callgrind).
 __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, std::size_t begin, std::size_t end,
                                                    const glm::dmat4& m, const ClipVolume<double>& volume,
-                                                   double width, double height, glm::dvec4* clip,
-                                                   glm::dvec2* raster, std::uint8_t* outcode, double& largestOut,
-                                                   double& nearestWOut) {
+                                                   const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
+                                                   std::uint8_t* outcode, double& largestOut, double& nearestWOut) {
+  const double width = camera.width(), height = camera.height();
   const __m256d m0 = _mm256_loadu_pd(&m[0][0]), m1 = _mm256_loadu_pd(&m[1][0]);
   const __m256d m2 = _mm256_loadu_pd(&m[2][0]), m3 = _mm256_loadu_pd(&m[3][0]);
   const __m256d guard = _mm256_set1_pd(volume.guard);
@@ -220,32 +249,12 @@ struct Pipeline {
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
     frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
-    const bool avx2 = resolveKernelIsa(options.isa) == KernelIsa::kAvx2;
+    const auto transformRange = resolveKernelIsa(options.isa) == KernelIsa::kAvx2 ? transformAvx2 : transformScalar;
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
-      if (avx2) {
-        transformAvx2(positions.data(), std::size_t(b) * kTrianglesPerBlock, end, clipFromWorld, volume,
-                      double(scene.camera.width()), double(scene.camera.height()), frame.clip.data(),
-                      frame.raster.data(), frame.outcode.data(), largest, nearestW);
-      }
-      for (std::size_t i = avx2 ? end : std::size_t(b) * kTrianglesPerBlock; i < end; ++i) {
-        const glm::dvec3 p(positions[i]);
-        const glm::dvec4 c = clipFromWorld * glm::dvec4(p, 1.0);
-        // Non-temporal stores: the lines were last read by the other core's tiles, and a
-        // store that bypasses the cache need not take them from it first (BM_Frame at 1M, 2
-        // threads: transform about 3.9 down to 2.0 to 2.6 ms; on 1 thread, whose lines are
-        // its own, 2.8 up to 3.5 ms). Set-up reads them back no slower.
-        double* to = reinterpret_cast<double*>(frame.clip.data() + i);
-        _mm_stream_pd(to, _mm_set_pd(c.y, c.x));
-        _mm_stream_pd(to + 2, _mm_set_pd(c.w, c.z));
-        frame.outcode[i] = std::uint8_t(volume.outcode(c));
-        glm::dvec2 r(0.0);
-        if (frame.outcode[i] == 0) r = rasterOf(c);  // what emit() would compute
-        _mm_stream_pd(reinterpret_cast<double*>(frame.raster.data() + i), _mm_set_pd(r.y, r.x));
-        largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-        nearestW = std::min(nearestW, c.w);
-      }
+      transformRange(positions.data(), std::size_t(b) * kTrianglesPerBlock, end, clipFromWorld, volume, scene.camera,
+                     frame.clip.data(), frame.raster.data(), frame.outcode.data(), largest, nearestW);
       frame.largest[b] = largest;
       frame.nearestW[b] = nearestW;
       _mm_sfence();
@@ -270,9 +279,7 @@ struct Pipeline {
                             nearestW - context.clipError > scene.camera.zNear();
   }
 
-  glm::dvec2 rasterOf(const glm::dvec4& c) const {
-    return {scene.camera.rasterXFromNdc(c.x / c.w), scene.camera.rasterYFromNdc(c.y / c.w)};
-  }
+  glm::dvec2 rasterOf(const glm::dvec4& c) const { return rc::rasterOf(scene.camera, c); }
 
   // Only the coverage half of the set-up runs here; the tiles run setupShade for the set-ups
   // that win a pixel, from the same inputs (the frame's vertex arrays, or `clipped`).
@@ -343,7 +350,6 @@ struct Pipeline {
     // The box lies in the viewport, so its coordinates are non-negative. (In locals: fn's
     // stores might alias s as far as the compiler knows, so it would reload and divide at
     // every step.)
-    static_assert(kTileSize == 1 << kTileShift);
     const unsigned x0 = unsigned(s.minX) >> kTileShift, x1 = unsigned(s.maxX) >> kTileShift;
     const unsigned y0 = unsigned(s.minY) >> kTileShift, y1 = unsigned(s.maxY) >> kTileShift;
     for (unsigned ty = y0; ty <= y1; ++ty) {

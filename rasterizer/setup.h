@@ -56,10 +56,7 @@ struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
     EdgeFunctions e{};
     const std::int64_t sign = flags & kPositive ? 1 : -1;
     for (int i = 0; i < 3; ++i) {
-      const int from = (i + 1) % 3, to = (i + 2) % 3;  // edge opposite vertex i
-      e.a[i] = sign * (std::int64_t(y[from]) - y[to]);
-      e.b[i] = sign * (std::int64_t(x[to]) - x[from]);
-      e.ox[i] = x[from], e.oy[i] = y[from];
+      setEdge(x, y, sign, i, e);
       e.bias[i] = (flags >> i) & kNotTopLeft ? -1 : 0;
     }
     return e;

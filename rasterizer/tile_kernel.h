@@ -22,7 +22,8 @@
 
 namespace rc::kernel {
 
-constexpr int kTileSize = 64;
+constexpr int kTileShift = 6;
+constexpr int kTileSize = 1 << kTileShift;  // 64
 constexpr int kLanes = 8;
 // The coverage pass prefetches the set-up this many bins ahead: a tile's bins skip through its
 // blocks' arrays, which the hardware prefetcher does not follow (7% of the tiles' time at 1M).
