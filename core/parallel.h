@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -47,6 +48,18 @@ void parallelFor(int count, int threads, Fn&& fn) {
   worker();
   for (auto& thread : pool) thread.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+// Calls fn(i) for every i in [0, count) as parallelFor does, but each thread takes one
+// contiguous run of indices: for items that write interleaved parts of a shared array, where
+// neighbouring items on different threads would share cache lines.
+template <typename Fn>
+void parallelForContiguous(int count, int threads, Fn&& fn) {
+  const int parts = std::min(resolveThreadCount(threads), count);
+  parallelFor(parts, parts, [&](int part) {
+    const int end = int(std::int64_t(count) * (part + 1) / parts);
+    for (int i = int(std::int64_t(count) * part / parts); i < end; ++i) fn(i);
+  });
 }
 
 }  // namespace rc

@@ -24,6 +24,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/exr_io.h"
 #include "core/parallel.h"
 #include "core/preview.h"
 #include "rasterizer/clip.h"
@@ -166,6 +167,7 @@ struct SetupBlock {
   std::vector<CoverageSetup<Real>> coverage;
   std::vector<ClippedTriangle<Real>> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
+  std::vector<std::uint32_t> tileBox;          // per set-up: tileBoxOf()
 };
 
 template <typename Real>
@@ -208,6 +210,8 @@ struct Pipeline {
                        std::to_string(28 - int(std::ceil(std::log2(std::max(width, height))))) +
                        " bits)");
     }
+    // The camera takes at most kMaxImageSide pixels a side.
+    static_assert(kMaxImageSide / kTileSize <= 256, "tileBoxOf packs tile coordinates in 8 bits");
     tilesX = (width + kTileSize - 1) / kTileSize;
     tilesY = (height + kTileSize - 1) / kTileSize;
     const std::size_t count = s.mesh.triangles.size();
@@ -345,13 +349,18 @@ struct Pipeline {
     flush();
   }
 
+  // The tiles a set-up's box touches, packed in a word: first and last tile column, then row,
+  // 8 bits each (at most kMaxImageSide / kTileSize = 256 tiles a side). The box lies in the
+  // viewport, so its coordinates are non-negative. Set-up packs it while the record is in
+  // cache; binning then reads 4 bytes a set-up instead of the record's 64.
+  static std::uint32_t tileBoxOf(const CoverageSetup<Real>& s) {
+    return (unsigned(s.minX) >> kTileShift) | (unsigned(s.maxX) >> kTileShift) << 8 |
+           (unsigned(s.minY) >> kTileShift) << 16 | (unsigned(s.maxY) >> kTileShift) << 24;
+  }
+
   template <typename Fn>
-  void forEachTile(const CoverageSetup<Real>& s, Fn&& fn) const {
-    // The box lies in the viewport, so its coordinates are non-negative. (In locals: fn's
-    // stores might alias s as far as the compiler knows, so it would reload and divide at
-    // every step.)
-    const unsigned x0 = unsigned(s.minX) >> kTileShift, x1 = unsigned(s.maxX) >> kTileShift;
-    const unsigned y0 = unsigned(s.minY) >> kTileShift, y1 = unsigned(s.maxY) >> kTileShift;
+  void forEachTile(std::uint32_t box, Fn&& fn) const {
+    const unsigned x0 = box & 0xFFu, x1 = (box >> 8) & 0xFFu, y0 = (box >> 16) & 0xFFu, y1 = box >> 24;
     for (unsigned ty = y0; ty <= y1; ++ty) {
       for (unsigned tx = x0; tx <= x1; ++tx) fn(std::size_t(ty) * tilesX + tx);
     }
@@ -371,7 +380,11 @@ struct Pipeline {
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
       block.tileCursor.assign(tiles, 0);
-      for (const CoverageSetup<Real>& c : block.coverage) forEachTile(c, [&](std::size_t t) { ++block.tileCursor[t]; });
+      block.tileBox.resize(block.coverage.size());
+      for (std::size_t i = 0; i < block.coverage.size(); ++i) {
+        block.tileBox[i] = tileBoxOf(block.coverage[i]);
+        forEachTile(block.tileBox[i], [&](std::size_t t) { ++block.tileCursor[t]; });
+      }
     });
     times.setupMs = millisecondsSince(t0);
     const auto t1 = std::chrono::steady_clock::now();
@@ -398,14 +411,17 @@ struct Pipeline {
     }
     frame.binStart[tiles] = total;
     frame.binned.resize(total);
-    parallelFor(blocks, options.threads, [&](int b) {
+    // A tile's list holds a few set-ups of each block, so neighbouring blocks write into the
+    // same cache lines: each thread takes a contiguous run of blocks (binning at 1M triangles,
+    // 2 threads: 1.2 to 1.0 ms).
+    parallelForContiguous(blocks, options.threads, [&](int b) {
       SetupBlock<Real>& block = frame.blocks[b];
       for (std::size_t t = 0; t < tiles; ++t) block.tileCursor[t] += frame.binStart[t];
       frame.blockCoverage[b] = block.coverage.data();
       frame.blockClipped[b] = block.clipped.data();
       for (std::size_t i = 0; i < block.coverage.size(); ++i) {
         const auto name = std::uint32_t((std::size_t(b) << kernel::kBlockShift) | i);
-        forEachTile(block.coverage[i], [&](std::size_t t) { frame.binned[block.tileCursor[t]++] = name; });
+        forEachTile(block.tileBox[i], [&](std::size_t t) { frame.binned[block.tileCursor[t]++] = name; });
       }
     });
     times.binMs = millisecondsSince(t1);

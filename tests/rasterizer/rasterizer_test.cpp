@@ -269,5 +269,17 @@ TEST(Rasterizer, SubpixelBitsTooFineForTheImageAreRefused) {
   EXPECT_ANY_THROW(rasterize(wide, o));
 }
 
+// Binning packs tile coordinates in 8 bits (rasterizer.cpp, tileBoxOf): the widest image a
+// camera takes, 16384 pixels, has 256 tile columns, and its last one is binned and drawn.
+TEST(Rasterizer, TheWidestImageBinsItsLastTileColumn) {
+  RasterOptions o;
+  o.subpixelBits = 4;  // a guard band of 2^24 pixels
+  // Wider than the view (half-width 4096 tan 30 deg 3 = 7094 at z = 0): it reaches the right edge.
+  const Scene widest = testing::makeTriangleScene({{-1e4f, -1, 0}, {1e4f, -1, 0}, {1e4f, 1, 0}}, 16384, 4);
+  const Framebuffer fb = rasterize(widest, o);
+  const auto& ids = fb.find(channels::kTriangleId)->uints;
+  EXPECT_EQ(ids[std::size_t(2) * 16384 + 16383], 0u);
+}
+
 }  // namespace
 }  // namespace rc
