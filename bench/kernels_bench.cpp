@@ -150,6 +150,7 @@ struct TileFixture {
     in.context = &ctx;
     in.subpixelBits = kBits;
     in.perspective = perspective;
+    in.gatheredResolve = true;
     in.tieScale = Real(5.0 * ctx.unitRoundoff);
   }
 

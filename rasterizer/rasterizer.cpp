@@ -481,6 +481,7 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   in.triangles = scene.mesh.triangles.data();
   in.subpixelBits = options.subpixelBits;
   in.perspective = options.interpolation == Interpolation::kPerspective;
+  in.gatheredResolve = options.gatheredResolve;
   // depthTieAt's 5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB, evaluated in Real: its own
   // handful of roundings (under 8 u relative) is covered by the factor 1 + 2^-16.
   in.tieScale = Real(5.0 * p.context.unitRoundoff / p.context.keyB * (1.0 + 0x1p-16));

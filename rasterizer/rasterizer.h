@@ -53,6 +53,9 @@ struct RasterOptions {
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
   KernelIsa isa = KernelIsa::kAuto;
   Culling culling = Culling::kAuto;  // changes no pixel a front face wins (docs/rasterizer.md)
+  // Resolve a row chunk of several winners in one pass over its lanes (float; tile_kernel.h)
+  // rather than winner by winner. The same bits either way: off only to test that.
+  bool gatheredResolve = true;
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real

@@ -62,6 +62,7 @@ struct Input {
   const SetupContext* context;
   int subpixelBits;
   bool perspective;
+  bool gatheredResolve;  // RasterOptions::gatheredResolve
   Real tieScale;  // depth.tie = tieScale (|key0| + |keyX dx| + |keyY dy|) depth (setup.h)
 };
 
@@ -386,6 +387,176 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   }
 }
 
+// Gathered resolve, for float set-ups. At 1M triangles a row chunk of eight pixels has about
+// five winners, and resolving it winner by winner computes all eight lanes for each to keep one
+// or two of them. Instead, each winner's resolve inputs are packed into one record of floats
+// (packShades); a chunk loads its lanes' records, transposes them so that each field is one
+// vector across the lanes, and resolves all eight lanes in one pass. Each lane runs the very
+// operations of resolveLanes in the same order, so the bits are the same whichever path a
+// chunk takes (Rasterizer.GatheredResolveGivesTheSameBitsAsWinnerByWinner).
+namespace pack {
+constexpr int kL0 = 0, kLx = 3, kLy = 6;  // screen-space planes
+constexpr int kQ = 9;                     // invW (perspective) or w (affine)
+constexpr int kAnchorX = 12, kAnchorY = 13;
+constexpr int kTriangle = 14;  // the triangle index's bits
+// Group 2 (only read with diagnostics): bounds, depth key plane, edge heights.
+constexpr int kBaryBound = 16, kDepthBound = 17, kKey0 = 18, kKeyX = 19, kKeyY = 20, kEdgeHeight = 21;
+constexpr int kAttributes = 24;  // then v0, v1, v2 of each attribute component
+constexpr int kGroup = kLanes;   // fields are transposed eight at a time
+// Meshes with more attribute components take the winner-by-winner path.
+constexpr int kMaxComponents = 8;
+constexpr std::size_t kStride = kAttributes + kMaxComponents * 3;  // 48 floats
+}  // namespace pack
+
+// Eight rows of eight floats -> eight columns, in place (the classic AVX unpack / shuffle /
+// 128-bit permute sequence, written as generic shuffles so that the SSE2 build has it too).
+RC_KERNEL_INLINE void transpose8(f32x8 r[8]) {
+  f32x8 t[8], u[8];
+  for (int i = 0; i < 8; i += 2) {
+    t[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    t[i + 1] = __builtin_shufflevector(r[i], r[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int i = 0; i < 8; i += 4) {
+    u[i] = __builtin_shufflevector(t[i], t[i + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+    u[i + 1] = __builtin_shufflevector(t[i], t[i + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    u[i + 2] = __builtin_shufflevector(t[i + 1], t[i + 3], 0, 1, 8, 9, 4, 5, 12, 13);
+    u[i + 3] = __builtin_shufflevector(t[i + 1], t[i + 3], 2, 3, 10, 11, 6, 7, 14, 15);
+  }
+  for (int i = 0; i < 4; ++i) {
+    r[i] = __builtin_shufflevector(u[i], u[i + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    r[i + 4] = __builtin_shufflevector(u[i], u[i + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+  }
+}
+
+template <int kComponents>
+RC_KERNEL_INLINE void copyVertexValues(const float* const from[3], float* to) {
+  for (int j = 0; j < kComponents; ++j, to += 3) to[0] = from[0][j], to[1] = from[1][j], to[2] = from[2][j];
+}
+
+// One record of pack::kStride floats per winner, from its set-ups. Fields past the attributes
+// are left as they are: no lane's arithmetic reads them.
+inline void packShades(const Input<float>& in, const Outputs& out, const std::uint32_t* bins,
+                       const std::uint32_t* winners, const ShadeSetup<float>* shades, std::size_t count,
+                       float* packs) {
+  constexpr std::size_t stride = pack::kStride;
+  for (std::size_t i = 0; i < count; ++i) {
+    const ShadeSetup<float>& s = shades[i];
+    const std::uint32_t name = bins[winners[i]];
+    const CoverageSetup<float>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+    float* p = packs + i * stride;
+    for (int k = 0; k < 3; ++k) {
+      p[pack::kL0 + k] = s.l0[k];
+      p[pack::kLx + k] = s.lx[k];
+      p[pack::kLy + k] = s.ly[k];
+      p[pack::kQ + k] = in.perspective ? s.invW[k] : s.w[k];
+      p[pack::kEdgeHeight + k] = s.edgeHeight[k];
+    }
+    p[pack::kAnchorX] = float(c.anchorX());  // pixel coordinates: exact
+    p[pack::kAnchorY] = float(c.anchorY());
+    std::memcpy(&p[pack::kTriangle], &s.triangle, sizeof s.triangle);
+    p[pack::kBaryBound] = s.baryBound;
+    p[pack::kDepthBound] = s.depthBound;
+    p[pack::kKey0] = c.key0;
+    p[pack::kKeyX] = c.keyX;
+    p[pack::kKeyY] = c.keyY;
+    const glm::uvec3 tri = in.triangles[s.triangle];
+    float* v = p + pack::kAttributes;
+    for (const Outputs::Attribute& a : out.attributes) {
+      const float* const from[3] = {a.values + std::size_t(tri.x) * a.components,
+                                    a.values + std::size_t(tri.y) * a.components,
+                                    a.values + std::size_t(tri.z) * a.components};
+      switch (a.components) {  // unrolled, as in resolveLanes
+        case 1: copyVertexValues<1>(from, v); break;
+        case 2: copyVertexValues<2>(from, v); break;
+        case 3: copyVertexValues<3>(from, v); break;
+        default: copyVertexValues<4>(from, v); break;
+      }
+      v += 3 * a.components;
+    }
+  }
+}
+
+// Field group g (fields 8g .. 8g + 7) of the eight lanes' records, one vector per field.
+RC_KERNEL_INLINE void gatherGroup(const float* const record[kLanes], int g, f32x8 field[kLanes]) {
+  for (int k = 0; k < kLanes; ++k) field[k] = load<f32x8>(record[k] + g * pack::kGroup);
+  transpose8(field);
+}
+
+RC_KERNEL_INLINE f32x8 absBits(const f32x8& v) {  // std::fabs on each lane: the sign bit cleared
+  u32x8 bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  bits &= 0x7FFFFFFFu;
+  f32x8 r;
+  std::memcpy(&r, &bits, sizeof r);
+  return r;
+}
+
+// resolveLanes for lanes with different winners: lane k's record is record[k]. Lanes outside
+// `valid` get what the winner-by-winner path leaves there: zeros and no triangle.
+RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out, const float* const record[kLanes],
+                                      int x, int y, const i32x8& valid, Resolved& r, u32x8& id, f32x8& baryBound,
+                                      f32x8& depthBound, float* attributes, std::size_t stride) {
+  baryBound = depthBound = f32x8{};  // written only with diagnostics
+  f32x8 f[kLanes];
+  gatherGroup(record, 0, f);
+  f32x8 g[kLanes];
+  gatherGroup(record, 1, g);
+  // Fields 0..7 in f, 8..15 in g.
+  const f32x8 dx = (float(x) + iota<float>()) - g[pack::kAnchorX - 8];  // small integers: exact
+  const f32x8 dy = float(y) - g[pack::kAnchorY - 8];
+  const f32x8 ly2 = g[0];
+  f32x8 l[3];
+  l[0] = f[pack::kL0 + 0] + f[pack::kLx + 0] * dx + f[pack::kLy + 0] * dy;
+  l[1] = f[pack::kL0 + 1] + f[pack::kLx + 1] * dx + f[pack::kLy + 1] * dy;
+  l[2] = f[pack::kL0 + 2] + f[pack::kLx + 2] * dx + ly2 * dy;
+  const f32x8 q[3] = {g[pack::kQ - 8], g[pack::kQ + 1 - 8], g[pack::kQ + 2 - 8]};
+  f32x8 b[3], depth;
+  if (in.perspective) {
+    const f32x8 q0 = l[0] * q[0], q1 = l[1] * q[1], q2 = l[2] * q[2];
+    const f32x8 inv = 1.0f / (q0 + q1 + q2);
+    b[0] = q0 * inv, b[1] = q1 * inv, b[2] = q2 * inv;
+    depth = (l[0] + l[1] + l[2]) * inv;
+  } else {
+    const f32x8 inv = 1.0f / (l[0] + l[1] + l[2]);
+    b[0] = l[0] * inv, b[1] = l[1] * inv, b[2] = l[2] * inv;
+    depth = b[0] * q[0] + b[1] * q[1] + b[2] * q[2];
+  }
+  const f32x8 none{};
+  for (int i = 0; i < 3; ++i) r.bary[i] = valid ? b[i] : none;
+  r.depth = valid ? depth : none;
+  u32x8 triangle;
+  std::memcpy(&triangle, &g[pack::kTriangle - 8], sizeof triangle);
+  id = valid ? triangle : u32x8{} + channels::kNoTriangle;
+  if (out.edgeDistance) {
+    f32x8 h[kLanes];
+    gatherGroup(record, 2, h);
+    f32x8 nearest = std::numeric_limits<float>::infinity() + f32x8{};
+    for (int i = 0; i < 3; ++i) {
+      const f32x8 height = h[pack::kEdgeHeight - 16 + i];
+      const f32x8 d = (l[i] < 0.0f ? -l[i] : l[i]) * height;
+      nearest = (~(height < 0.0f) & (d < nearest)) ? d : nearest;  // height -1: no edge
+    }
+    r.edgeDistance = valid ? nearest : none;
+    const f32x8 kx = h[pack::kKeyX - 16] * dx;
+    const f32x8 ky = absBits(h[pack::kKeyY - 16] * dy);
+    const f32x8 terms = absBits(h[pack::kKey0 - 16]) + (kx < 0.0f ? -kx : kx) + ky;
+    r.depthTie = valid ? in.tieScale * terms * depth : none;
+    baryBound = valid ? h[pack::kBaryBound - 16] : none;
+    depthBound = valid ? h[pack::kDepthBound - 16] : none;
+  }
+  // The attributes' vertex values, three fields per component (at most pack::kMaxComponents).
+  f32x8 v[pack::kMaxComponents * 3 / pack::kGroup * kLanes];
+  const int components = out.attributeComponents;
+  for (int group = 0; group * pack::kGroup < 3 * components; ++group) {
+    gatherGroup(record, pack::kAttributes / pack::kGroup + group, v + group * kLanes);
+  }
+  float* into = attributes;
+  for (int j = 0; j < components; ++j, into += stride) {
+    const f32x8 value = b[0] * v[3 * j] + b[1] * v[3 * j + 1] + b[2] * v[3 * j + 2];
+    store(into, valid ? value : none);
+  }
+}
+
 // Resolve writes each tile row into a small staging row per plane (in L1), then copies each
 // plane's row out in one go: with non-temporal stores (SSE's movntdq, in every x86-64) when
 // the destination is 16-byte aligned. The planes are written once and not read back in this
@@ -476,6 +647,20 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   shades.resize(winners.size());
   shadeSetupsOf<kAvx2>(in, out, job.bins, winners.data(), winners.size(), shades.data());
   const auto shadeOf = [&](std::uint32_t n) -> const ShadeSetup<Real>& { return shades[std::size_t(slot[n])]; };
+  // Gathered resolve (float only) needs every winner whole: a clipped one's barycentrics go
+  // through its map, which only the winner-by-winner path applies.
+  thread_local std::vector<float> packs;
+  constexpr std::size_t packStride = pack::kStride;
+  bool gathered = false;
+  if constexpr (sizeof(Real) == 4) {
+    gathered = in.gatheredResolve && out.attributeComponents <= pack::kMaxComponents &&
+               std::none_of(shades.begin(), shades.end(), [](const ShadeSetup<Real>& s) { return s.clipMap >= 0; });
+    if (gathered) {
+      packs.resize((winners.size() + 1) * packStride);  // + the empty pixels' record of zeros
+      packShades(in, out, job.bins, winners.data(), shades.data(), winners.size(), packs.data());
+      std::fill(packs.end() - std::ptrdiff_t(packStride), packs.end(), 0.0f);
+    }
+  }
 
   // Resolve, a row chunk at a time: one pass per distinct winner among its lanes.
   const int components = out.attributeComponents;
@@ -511,6 +696,20 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         id = u32x8{} + s.triangle;
         baryBound = f32x8{} + s.baryBound;
         depthBound = f32x8{} + s.depthBound;
+      } else if (gathered && [&] {
+                   const unsigned lanesIn = laneBits<kAvx2>(valid);
+                   if (lanesIn == 0) return false;
+                   const unsigned rest = lanesIn & ~laneBits<kAvx2>(valid & (w == w[__builtin_ctz(lanesIn)]));
+                   return rest != 0 && laneBits<kAvx2>(valid & (w == w[__builtin_ctz(rest)])) != rest;
+                 }()) {
+        if constexpr (sizeof(Real) == 4) {
+          const float* record[kLanes];
+          const float* const emptyRecord = packs.data() + winners.size() * packStride;
+          for (int k = 0; k < kLanes; ++k) {
+            record[k] = valid[k] ? packs.data() + std::size_t(slot[w[k]]) * packStride : emptyRecord;
+          }
+          resolveGathered(in, out, record, x, y, valid, r, id, baryBound, depthBound, attributesAt, kStride);
+        }
       } else {
         id = u32x8{} + channels::kNoTriangle;
         baryBound = depthBound = f32x8{};
