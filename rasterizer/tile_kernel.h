@@ -491,6 +491,17 @@ RC_KERNEL_INLINE f32x8 absBits(const f32x8& v) {  // std::fabs on each lane: the
   return r;
 }
 
+// Whether the lanes in `valid` hold more than n distinct winners.
+template <bool kAvx2>
+RC_KERNEL_INLINE bool moreWinnersThan(const u32x8& w, const i32x8& valid, int n) {
+  unsigned rest = laneBits<kAvx2>(valid);
+  for (int k = 0; k < n && rest != 0; ++k) rest &= ~laneBits<kAvx2>(valid & (w == w[__builtin_ctz(rest)]));
+  return rest != 0;
+}
+// Chunks of up to this many winners are resolved winner by winner: the transposes cost more
+// than two passes (docs/rasterizer.md, "Gathered resolve").
+constexpr int kGatherAbove = 2;
+
 // resolveLanes for lanes with different winners: lane k's record is record[k]. Lanes outside
 // `valid` get what the winner-by-winner path leaves there: zeros and no triangle.
 RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out, const float* const record[kLanes],
@@ -696,12 +707,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         id = u32x8{} + s.triangle;
         baryBound = f32x8{} + s.baryBound;
         depthBound = f32x8{} + s.depthBound;
-      } else if (gathered && [&] {
-                   const unsigned lanesIn = laneBits<kAvx2>(valid);
-                   if (lanesIn == 0) return false;
-                   const unsigned rest = lanesIn & ~laneBits<kAvx2>(valid & (w == w[__builtin_ctz(lanesIn)]));
-                   return rest != 0 && laneBits<kAvx2>(valid & (w == w[__builtin_ctz(rest)])) != rest;
-                 }()) {
+      } else if (gathered && moreWinnersThan<kAvx2>(w, valid, kGatherAbove)) {
         if constexpr (sizeof(Real) == 4) {
           const float* record[kLanes];
           const float* const emptyRecord = packs.data() + winners.size() * packStride;
