@@ -433,8 +433,8 @@ RC_KERNEL_INLINE void copyVertexValues(const float* const from[3], float* to) {
   for (int j = 0; j < kComponents; ++j, to += 3) to[0] = from[0][j], to[1] = from[1][j], to[2] = from[2][j];
 }
 
-// One record of pack::kStride floats per winner, from its set-ups. Fields past the attributes
-// are left as they are: no lane's arithmetic reads them.
+// One record of pack::kStride floats per winner, from its set-ups. The fields no lane reads
+// (15, and those past the mesh's attributes) are left as they are.
 inline void packShades(const Input<float>& in, const Outputs& out, const std::uint32_t* bins,
                        const std::uint32_t* winners, const ShadeSetup<float>* shades, std::size_t count,
                        float* packs) {
