@@ -520,18 +520,10 @@ RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out
   l[0] = f[pack::kL0 + 0] + f[pack::kLx + 0] * dx + f[pack::kLy + 0] * dy;
   l[1] = f[pack::kL0 + 1] + f[pack::kLx + 1] * dx + f[pack::kLy + 1] * dy;
   l[2] = f[pack::kL0 + 2] + f[pack::kLx + 2] * dx + ly2 * dy;
-  const f32x8 q[3] = {g[pack::kQ - 8], g[pack::kQ + 1 - 8], g[pack::kQ + 2 - 8]};
-  f32x8 b[3], depth;
-  if (in.perspective) {
-    const f32x8 q0 = l[0] * q[0], q1 = l[1] * q[1], q2 = l[2] * q[2];
-    const f32x8 inv = 1.0f / (q0 + q1 + q2);
-    b[0] = q0 * inv, b[1] = q1 * inv, b[2] = q2 * inv;
-    depth = (l[0] + l[1] + l[2]) * inv;
-  } else {
-    const f32x8 inv = 1.0f / (l[0] + l[1] + l[2]);
-    b[0] = l[0] * inv, b[1] = l[1] * inv, b[2] = l[2] * inv;
-    depth = b[0] * q[0] + b[1] * q[1] + b[2] * q[2];
-  }
+  const f32x8 q[3] = {g[pack::kQ - 8], g[pack::kQ + 1 - 8], g[pack::kQ + 2 - 8]};  // 1/w or w, per lane
+  const Recovered<f32x8> recovered = in.perspective ? perspectiveCorrect(l, q) : affineWeights(l, q);
+  const f32x8* const b = recovered.b;
+  const f32x8 depth = recovered.depth;
   const f32x8 none{};
   for (int i = 0; i < 3; ++i) r.bary[i] = valid ? b[i] : none;
   r.depth = valid ? depth : none;
