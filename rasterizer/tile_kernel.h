@@ -11,6 +11,7 @@
 #include <cstring>
 #include <emmintrin.h>
 #include <limits>
+#include <type_traits>
 #include <vector>
 #include <glm/glm.hpp>
 
@@ -247,6 +248,12 @@ inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, ShadeSetup<R
   s.clipMap = source.clipped;
 }
 
+// An attribute's values at a triangle's three vertices.
+RC_KERNEL_INLINE void vertexValuesOf(const Outputs::Attribute& a, const glm::uvec3& tri, const float* v[3]) {
+  const std::size_t n = std::size_t(a.components);
+  v[0] = a.values + tri.x * n, v[1] = a.values + tri.y * n, v[2] = a.values + tri.z * n;
+}
+
 // shadeSetupOf for the set-ups at bins[winners[0..count)]: whole triangles four at a time
 // through the batch set-up (setup_batch.h, the same bits), clipped sub-triangles one by one.
 // Their records, the mesh's triangles and the vertices are scattered through memory: each is
@@ -293,10 +300,9 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
           __builtin_prefetch(&in.vertexRaster[v]);
         }
         for (const Outputs::Attribute& a : out.attributes) {  // one walk of the attributes
-          const std::size_t n = std::size_t(a.components);
-          __builtin_prefetch(a.values + tri.x * n);
-          __builtin_prefetch(a.values + tri.y * n);
-          __builtin_prefetch(a.values + tri.z * n);
+          const float* v[3];
+          vertexValuesOf(a, tri, v);
+          for (const float* values : v) __builtin_prefetch(values);
         }
       }
     }
@@ -314,6 +320,58 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
     if (++pending == batch::kLanes) flush();
   }
   if (pending > 0) flush();
+}
+
+// fn(std::integral_constant<int, n>{}) for an attribute's n components (meshes have 1 to 4), so
+// that loops over them unroll: a loop over a runtime count cost as much in control as in work.
+template <typename Fn>
+RC_KERNEL_INLINE void withComponents(int n, Fn&& fn) {
+  switch (n) {
+    case 1: fn(std::integral_constant<int, 1>{}); break;
+    case 2: fn(std::integral_constant<int, 2>{}); break;
+    case 3: fn(std::integral_constant<int, 3>{}); break;
+    default: fn(std::integral_constant<int, 4>{}); break;
+  }
+}
+
+// std::fabs of a scalar, or of each lane of a float vector (the sign bit cleared).
+template <typename T>
+RC_KERNEL_INLINE T absOf(const T& v) {
+  if constexpr (std::is_arithmetic_v<T>) {
+    return std::fabs(v);
+  } else {
+    u32x8 bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    bits &= 0x7FFFFFFFu;
+    T r;
+    std::memcpy(&r, &bits, sizeof r);
+    return r;
+  }
+}
+
+// The two per-pixel diagnostics (setup.h): the edge distance, the minimum over the source's edges
+// of |l_i| height_i (a height below 0 marks an edge inside a clipped polygon, no source edge),
+// and the depth tie, in Real (tieScale carries the rounding of this evaluation). H is the
+// winner's scalars (winner by winner) or each lane's own (the gathered resolve); the operations
+// and their order are the same either way.
+template <typename V, typename H, typename Real>
+RC_KERNEL_INLINE void diagnosticsOf(const V l[3], const H height[3], const H& key0, const H& keyX, const H& keyY,
+                                    const V& dx, const H& dy, const V& depth, Real tieScale, V& edgeDistance,
+                                    V& depthTie) {
+  V nearest = std::numeric_limits<Real>::infinity() + V{};
+  for (int i = 0; i < 3; ++i) {
+    const V d = (l[i] < Real(0) ? -l[i] : l[i]) * height[i];
+    if constexpr (std::is_arithmetic_v<H>) {
+      if (!(height[i] < Real(0))) nearest = d < nearest ? d : nearest;
+    } else {
+      nearest = (~(height[i] < Real(0)) & (d < nearest)) ? d : nearest;
+    }
+  }
+  edgeDistance = nearest;
+  const V kx = keyX * dx;
+  const H ky = absOf(keyY * dy);
+  const V terms = absOf(key0) + (kx < Real(0) ? -kx : kx) + ky;
+  depthTie = tieScale * terms * depth;
 }
 
 // One attribute's kComponents components at barycentrics b, from its values at the three
@@ -357,32 +415,19 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   for (int i = 0; i < 3; ++i) r.bary[i] = toFloat<Real>(b[i]);
   r.depth = toFloat<Real>(depth);
   if (out.edgeDistance) {
-    V nearest = std::numeric_limits<Real>::infinity() + V{};  // over the source's edges
-    for (int i = 0; i < 3; ++i) {
-      if (s.edgeHeight[i] < Real(0)) continue;
-      const V d = (l[i] < Real(0) ? -l[i] : l[i]) * s.edgeHeight[i];
-      nearest = d < nearest ? d : nearest;
-    }
-    r.edgeDistance = toFloat<Real>(nearest);
-    // The depth tie (setup.h), in Real: tieScale carries the rounding of this evaluation.
-    const V kx = c.keyX * dx;
-    const Real ky = std::fabs(c.keyY * dy);
-    const V terms = std::fabs(c.key0) + (kx < Real(0) ? -kx : kx) + ky;
-    r.depthTie = toFloat<Real>(in.tieScale * terms * depth);
+    V edgeDistance, depthTie;
+    diagnosticsOf(l, s.edgeHeight, c.key0, c.keyX, c.keyY, dx, dy, depth, in.tieScale, edgeDistance, depthTie);
+    r.edgeDistance = toFloat<Real>(edgeDistance);
+    r.depthTie = toFloat<Real>(depthTie);
   }
   const glm::uvec3& tri = in.triangles[s.triangle];
   float* into = attributes;
   for (const Outputs::Attribute& a : out.attributes) {
-    const float* v[3] = {a.values + std::size_t(tri.x) * a.components, a.values + std::size_t(tri.y) * a.components,
-                         a.values + std::size_t(tri.z) * a.components};
-    // Unrolled for each count of components (meshes have 1 to 4): a loop's own control cost as
-    // much as its arithmetic.
-    switch (a.components) {
-      case 1: interpolateInto<kBlend, 1>(b, v, into, stride, mine); break;
-      case 2: interpolateInto<kBlend, 2>(b, v, into, stride, mine); break;
-      case 3: interpolateInto<kBlend, 3>(b, v, into, stride, mine); break;
-      default: interpolateInto<kBlend, 4>(b, v, into, stride, mine); break;
-    }
+    const float* v[3];
+    vertexValuesOf(a, tri, v);
+    withComponents(a.components, [&](auto n) __attribute__((always_inline)) {
+      interpolateInto<kBlend, decltype(n)::value>(b, v, into, stride, mine);
+    });
     into += stride * std::size_t(a.components);
   }
 }
@@ -428,11 +473,6 @@ RC_KERNEL_INLINE void transpose8(f32x8 r[8]) {
   }
 }
 
-template <int kComponents>
-RC_KERNEL_INLINE void copyVertexValues(const float* const from[3], float* to) {
-  for (int j = 0; j < kComponents; ++j, to += 3) to[0] = from[0][j], to[1] = from[1][j], to[2] = from[2][j];
-}
-
 // One record of pack::kStride floats per winner, from its set-ups. The fields no lane reads
 // (15, and those past the mesh's attributes) are left as they are.
 inline void packShades(const Input<float>& in, const Outputs& out, const std::uint32_t* bins,
@@ -462,15 +502,11 @@ inline void packShades(const Input<float>& in, const Outputs& out, const std::ui
     const glm::uvec3 tri = in.triangles[s.triangle];
     float* v = p + pack::kAttributes;
     for (const Outputs::Attribute& a : out.attributes) {
-      const float* const from[3] = {a.values + std::size_t(tri.x) * a.components,
-                                    a.values + std::size_t(tri.y) * a.components,
-                                    a.values + std::size_t(tri.z) * a.components};
-      switch (a.components) {  // unrolled, as in resolveLanes
-        case 1: copyVertexValues<1>(from, v); break;
-        case 2: copyVertexValues<2>(from, v); break;
-        case 3: copyVertexValues<3>(from, v); break;
-        default: copyVertexValues<4>(from, v); break;
-      }
+      const float* from[3];
+      vertexValuesOf(a, tri, from);
+      withComponents(a.components, [&](auto n) __attribute__((always_inline)) {
+        for (int j = 0; j < decltype(n)::value; ++j) v[3 * j] = from[0][j], v[3 * j + 1] = from[1][j], v[3 * j + 2] = from[2][j];
+      });
       v += 3 * a.components;
     }
   }
@@ -480,15 +516,6 @@ inline void packShades(const Input<float>& in, const Outputs& out, const std::ui
 RC_KERNEL_INLINE void gatherGroup(const float* const record[kLanes], int g, f32x8 field[kLanes]) {
   for (int k = 0; k < kLanes; ++k) field[k] = load<f32x8>(record[k] + g * pack::kGroup);
   transpose8(field);
-}
-
-RC_KERNEL_INLINE f32x8 absBits(const f32x8& v) {  // std::fabs on each lane: the sign bit cleared
-  u32x8 bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  bits &= 0x7FFFFFFFu;
-  f32x8 r;
-  std::memcpy(&r, &bits, sizeof r);
-  return r;
 }
 
 // Whether the lanes in `valid` hold more than n distinct winners.
@@ -533,17 +560,11 @@ RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out
   if (out.edgeDistance) {
     f32x8 h[kLanes];
     gatherGroup(record, 2, h);
-    f32x8 nearest = std::numeric_limits<float>::infinity() + f32x8{};
-    for (int i = 0; i < 3; ++i) {
-      const f32x8 height = h[pack::kEdgeHeight - 16 + i];
-      const f32x8 d = (l[i] < 0.0f ? -l[i] : l[i]) * height;
-      nearest = (~(height < 0.0f) & (d < nearest)) ? d : nearest;  // height -1: no edge
-    }
-    r.edgeDistance = valid ? nearest : none;
-    const f32x8 kx = h[pack::kKeyX - 16] * dx;
-    const f32x8 ky = absBits(h[pack::kKeyY - 16] * dy);
-    const f32x8 terms = absBits(h[pack::kKey0 - 16]) + (kx < 0.0f ? -kx : kx) + ky;
-    r.depthTie = valid ? in.tieScale * terms * depth : none;
+    f32x8 edgeDistance, depthTie;
+    diagnosticsOf(l, h + (pack::kEdgeHeight - 16), h[pack::kKey0 - 16], h[pack::kKeyX - 16], h[pack::kKeyY - 16], dx, dy,
+                  depth, in.tieScale, edgeDistance, depthTie);
+    r.edgeDistance = valid ? edgeDistance : none;
+    r.depthTie = valid ? depthTie : none;
     baryBound = valid ? h[pack::kBaryBound - 16] : none;
     depthBound = valid ? h[pack::kDepthBound - 16] : none;
   }
