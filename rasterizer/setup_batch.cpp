@@ -20,18 +20,11 @@ namespace {
 
 using formulas::f64x4;
 using formulas::i64x4;
+using lanes::bitsAs;
 typedef std::int32_t i32x4 __attribute__((vector_size(16)));
 typedef float f32x4 __attribute__((vector_size(16)));
 
 #define RC_BATCH_INLINE inline __attribute__((always_inline))
-
-template <typename To, typename From>
-RC_BATCH_INLINE To bitsAs(const From& v) {
-  static_assert(sizeof(To) == sizeof(From));
-  To t;
-  std::memcpy(&t, &v, sizeof t);
-  return t;
-}
 
 // 1.5 * 2^52: x + kMagic, for |x| < 2^51, holds round(x) in its low mantissa bits (setup.cpp's
 // roundToInteger).

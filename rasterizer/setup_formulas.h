@@ -5,8 +5,6 @@
 // functions stay apart: they take int64 scalars in one and double lanes in the other.
 #pragma once
 
-#include <emmintrin.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +12,7 @@
 #include <initializer_list>
 #include <limits>
 
+#include "core/lanes.h"
 #include "rasterizer/setup.h"
 
 // Vector values only pass between always-inlined functions (tile_kernel.h).
@@ -22,26 +21,13 @@
 
 namespace rc::formulas {
 
-typedef double f64x4 __attribute__((vector_size(32)));
-typedef std::int64_t i64x4 __attribute__((vector_size(32)));
+using lanes::absOf;
+using lanes::f64x4;
+using lanes::i64x4;
+using lanes::stdMax;
+using lanes::stdMin;
 
 #define RC_FORMULA_INLINE inline __attribute__((always_inline))
-
-// fabs, and std::max and std::min as the standard defines them (the first argument unless the
-// second is larger, or smaller), so that every lane picks what the scalar code picks.
-RC_FORMULA_INLINE double absOf(double v) { return std::fabs(v); }
-RC_FORMULA_INLINE double stdMax(double a, double b) { return std::max(a, b); }
-RC_FORMULA_INLINE double stdMin(double a, double b) { return std::min(a, b); }
-RC_FORMULA_INLINE f64x4 absOf(const f64x4& v) {
-  i64x4 bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  bits &= std::int64_t(0x7FFFFFFFFFFFFFFF);
-  f64x4 r;
-  std::memcpy(&r, &bits, sizeof r);
-  return r;
-}
-RC_FORMULA_INLINE f64x4 stdMax(const f64x4& a, const f64x4& b) { return a < b ? b : a; }
-RC_FORMULA_INLINE f64x4 stdMin(const f64x4& a, const f64x4& b) { return b < a ? b : a; }
 
 // |(lx, ly)| from its squared length: sqrt of the sum of squares (hypot costs more than the
 // rest of the set-up), unless a square overflowed or underflowed.
@@ -49,11 +35,7 @@ RC_FORMULA_INLINE double lengthOf(double squares, double lx, double ly) {
   return std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx, ly);
 }
 RC_FORMULA_INLINE f64x4 lengthOf(const f64x4& squares, const f64x4& lx, const f64x4& ly) {
-  // Two SSE2 square roots on the halves, in registers: halves stored to memory and read back
-  // whole cannot be forwarded, a stall that showed in the tiles' setupShade.
-  const __m128d low = _mm_sqrt_pd(__builtin_shufflevector(squares, squares, 0, 1));
-  const __m128d high = _mm_sqrt_pd(__builtin_shufflevector(squares, squares, 2, 3));
-  f64x4 length = __builtin_shufflevector(low, high, 0, 1, 2, 3);
+  f64x4 length = lanes::sqrtOf(squares);
   const i64x4 normal = (squares >= std::numeric_limits<double>::min()) & (squares <= std::numeric_limits<double>::max());
   if (!(normal[0] & normal[1] & normal[2] & normal[3])) {
     for (int k = 0; k < 4; ++k) {

@@ -5,12 +5,25 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <limits>
+
+#include "core/lanes.h"
+
+// Vector values pass only between always-inlined functions (core/lanes.h).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace rc {
 
-// Embree: p = (1 - u - v) p0 + u p1 + v p2, so (b0, b1, b2) = (1 - u - v, u, v).
+// Embree: p = (1 - u - v) p0 + u p1 + v p2, so (b0, b1, b2) = (1 - u - v, u, v), for one hit
+// or four lanes of them (u and v already widened to double).
+template <typename V>
+RC_LANES_INLINE lanes::Vec3<V> baryFromEmbreeUv(const V& u, const V& v) {
+  return {1.0 - u - v, u, v};
+}
 inline glm::dvec3 baryFromEmbreeUv(float u, float v) {
-  return {1.0 - double(u) - double(v), double(u), double(v)};
+  const lanes::Vec3<double> b = baryFromEmbreeUv(double(u), double(v));
+  return {b.x, b.y, b.z};
 }
 
 struct DoubleHit {
@@ -31,48 +44,76 @@ struct DoubleHit {
 // Everything but P, det, b1, b2, |d| and the terms with det depends on the triangle and the
 // ray's origin alone: TriangleFrame holds those parts, so that the many rays from one origin
 // (a camera's) that hit one triangle compute them once. Splitting changes no operation or
-// its order, so the result is the same to the bit.
+// its order, so the result is the same to the bit. V is a double or four lanes of them
+// (core/lanes.h): each lane gets the bits the double code gives.
+template <typename V>
 struct TriangleFrame {
-  glm::dvec3 e1, e2, T, Q;
-  double tNumerator;  // e2 . Q
-  double L;           // longest edge
-  double lengthT, lengthE1, lengthE2;
-  double depthBoundT;  // |e2| |T| |e1| / |e2 . Q|: the depth bound's part without det
+  lanes::Vec3<V> e1, e2, T, Q;
+  V tNumerator;  // e2 . Q
+  V L;           // longest edge
+  V lengthT, lengthE1, lengthE2;
+  V depthBoundT;  // |e2| |T| |e1| / |e2 . Q|: the depth bound's part without det
 };
 
-inline TriangleFrame triangleFrame(const glm::dvec3& o, const glm::dvec3& v0, const glm::dvec3& v1,
-                                   const glm::dvec3& v2) {
-  TriangleFrame f;
+template <typename V>
+RC_LANES_INLINE TriangleFrame<V> triangleFrame(const lanes::Vec3<V>& o, const lanes::Vec3<V>& v0,
+                                               const lanes::Vec3<V>& v1, const lanes::Vec3<V>& v2) {
+  using lanes::length;
+  TriangleFrame<V> f;
   f.e1 = v1 - v0;
   f.e2 = v2 - v0;
   f.T = o - v0;
-  f.Q = glm::cross(f.T, f.e1);
-  f.tNumerator = glm::dot(f.e2, f.Q);
-  f.L = std::max({glm::length(f.e1), glm::length(f.e2), glm::length(f.e2 - f.e1)});
-  f.lengthT = glm::length(f.T);
-  f.lengthE1 = glm::length(f.e1);
-  f.lengthE2 = glm::length(f.e2);
-  f.depthBoundT = f.lengthE2 * f.lengthT * f.lengthE1 / std::fabs(f.tNumerator);
+  f.Q = lanes::cross(f.T, f.e1);
+  f.tNumerator = lanes::dot(f.e2, f.Q);
+  // std::max({a, b, c}) keeps the first of equal largest values, as stdMax does.
+  f.L = lanes::stdMax(lanes::stdMax(length(f.e1), length(f.e2)), length(f.e2 - f.e1));
+  f.lengthT = length(f.T);
+  f.lengthE1 = length(f.e1);
+  f.lengthE2 = length(f.e2);
+  f.depthBoundT = f.lengthE2 * f.lengthT * f.lengthE1 / lanes::absOf(f.tNumerator);
   return f;
 }
 
-inline DoubleHit intersectRay(const TriangleFrame& f, const glm::dvec3& d) {
-  constexpr double u = 0x1p-53;
-  const glm::dvec3 P = glm::cross(d, f.e2);
-  const double det = glm::dot(f.e1, P);
-  if (!(det != 0.0) || !std::isfinite(det)) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
-  const double inv = 1.0 / det;
-  const double b1 = glm::dot(f.T, P) * inv;
-  const double b2 = glm::dot(d, f.Q) * inv;
-  const double lengthD = glm::length(d);
-  const double baryBound = 16.0 * u * lengthD * f.L * (f.lengthT + 3.0 * f.L) / std::fabs(det);
-  const double depthBound = 8.0 * u * (f.depthBoundT + f.lengthE1 * lengthD * f.lengthE2 / std::fabs(det));
-  return {true, {1.0 - b1 - b2, b1, b2}, f.tNumerator * inv, baryBound, depthBound};
+// A hit's values; `valid` is false (a zero lane) where the ray is parallel to the plane, and
+// there the other values are meaningless.
+template <typename V, typename Mask>
+struct LaneHit {
+  Mask valid;
+  lanes::Vec3<V> b;
+  V t, baryBound, depthBound;
+};
+
+RC_LANES_INLINE bool finiteNonZero(double det) { return det != 0.0 && std::isfinite(det); }
+RC_LANES_INLINE lanes::i64x4 finiteNonZero(const lanes::f64x4& det) {
+  return (det != 0.0) & (lanes::absOf(det) <= std::numeric_limits<double>::max());
 }
 
+template <typename V>
+RC_LANES_INLINE auto intersectRay(const TriangleFrame<V>& f, const lanes::Vec3<V>& d) {
+  constexpr double u = 0x1p-53;
+  const lanes::Vec3<V> P = lanes::cross(d, f.e2);
+  const V det = lanes::dot(f.e1, P);
+  const auto valid = finiteNonZero(det);
+  const V safeDet = lanes::select(valid, det, V{} + 1.0);  // no division by 0 in any lane
+  const V inv = 1.0 / safeDet;
+  const V b1 = lanes::dot(f.T, P) * inv;
+  const V b2 = lanes::dot(d, f.Q) * inv;
+  const V lengthD = lanes::length(d);
+  const V baryBound = 16.0 * u * lengthD * f.L * (f.lengthT + 3.0 * f.L) / lanes::absOf(safeDet);
+  const V depthBound = 8.0 * u * (f.depthBoundT + f.lengthE1 * lengthD * f.lengthE2 / lanes::absOf(safeDet));
+  return LaneHit<V, decltype(valid)>{valid, {1.0 - b1 - b2, b1, b2}, f.tNumerator * inv, baryBound, depthBound};
+}
+
+inline lanes::Vec3<double> vec3Of(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+// One ray from o along d against the triangle (v0, v1, v2).
 inline DoubleHit intersectRayTriangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& v0,
                                       const glm::dvec3& v1, const glm::dvec3& v2) {
-  return intersectRay(triangleFrame(o, v0, v1, v2), d);
+  const auto hit = intersectRay(triangleFrame(vec3Of(o), vec3Of(v0), vec3Of(v1), vec3Of(v2)), vec3Of(d));
+  if (!hit.valid) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
+  return {true, {hit.b.x, hit.b.y, hit.b.z}, hit.t, hit.baryBound, hit.depthBound};
 }
 
 }  // namespace rc
+
+#pragma GCC diagnostic pop

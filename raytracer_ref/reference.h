@@ -15,6 +15,8 @@ struct ReferenceOptions {
   int threads = 0;           // worker threads; 0 = all cores
   std::string isa = "avx2";  // Embree ISA pinned in the device config: sse2, sse4.2, avx, avx2,
                              // avx512; results differ between ISAs, so it is never left to Embree
+  bool avx2Recompute = true;  // the double recomputation in AVX2 where the CPU has it, else the
+                              // x86-64 baseline; both give the same bits (a switch for the tests)
 };
 
 // The reference in its two phases, so they can be timed apart: construction builds Embree's

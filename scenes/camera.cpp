@@ -88,13 +88,6 @@ glm::dmat4 Camera::clipFromView() const {
   return m;
 }
 
-glm::dvec3 Camera::directionThroughRaster(const glm::dvec2& r) const {
-  // Inverse of rasterXFromNdc / rasterYFromNdc.
-  const double ndcX = 2.0 * r.x / spec_.width - 1.0;
-  const double ndcY = 1.0 - 2.0 * r.y / spec_.height;
-  return forward_ + (ndcX * tanHalfFovY_ * aspect_) * right_ + (ndcY * tanHalfFovY_) * up_;
-}
-
 CameraRay Camera::rayThroughPixel(int x, int y) const {
   CameraRay ray;
   ray.origin = spec_.eye;

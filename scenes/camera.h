@@ -8,6 +8,8 @@
 #include <limits>
 #include <string>
 
+#include "core/lanes.h"
+
 namespace rc {
 
 struct CameraSpec {
@@ -73,7 +75,32 @@ class Camera {
   // The ray through the centre of pixel (x, y), in double.
   CameraRay rayThroughPixel(int x, int y) const;
   // Direction (direction . forward == 1) of the ray through raster position r, in double.
-  glm::dvec3 directionThroughRaster(const glm::dvec2& r) const;
+  glm::dvec3 directionThroughRaster(const glm::dvec2& r) const {
+    const lanes::Vec3<double> d = directionThroughRaster(r.x, r.y);
+    return {d.x, d.y, d.z};
+  }
+  // The same for a double or for four lanes of raster positions (core/lanes.h), with the same
+  // bits in every lane, in two halves for tracing many pixels: the offset along right_ of a
+  // column and along up_ of a row (each computed once), then their sum with forward_.
+  template <typename V>
+  RC_LANES_INLINE lanes::Vec3<V> directionThroughRaster(const V& rx, const V& ry) const {
+    return directionFromOffsets(rightOffset(rx), upOffset(ry));
+  }
+  template <typename V>
+  RC_LANES_INLINE V rightOffset(const V& rx) const {
+    const V ndcX = 2.0 * rx / double(spec_.width) - 1.0;  // inverse of rasterXFromNdc
+    return ndcX * tanHalfFovY_ * aspect_;
+  }
+  template <typename V>
+  RC_LANES_INLINE V upOffset(const V& ry) const {
+    const V ndcY = 1.0 - 2.0 * ry / double(spec_.height);  // inverse of rasterYFromNdc
+    return ndcY * tanHalfFovY_;
+  }
+  template <typename V>
+  RC_LANES_INLINE lanes::Vec3<V> directionFromOffsets(const V& s, const V& t) const {
+    return {forward_.x + s * right_.x + t * up_.x, forward_.y + s * right_.y + t * up_.y,
+            forward_.z + s * right_.z + t * up_.z};
+  }
   // The world point seen at raster position r at the given depth (w); depth <= 0 gives points
   // in or behind the eye plane that project (with w <= 0) to the same position.
   glm::dvec3 worldAtRaster(const glm::dvec2& r, double depth) const {

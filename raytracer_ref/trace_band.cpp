@@ -1,0 +1,281 @@
+// The reference's band tracer (trace_band.h). Every value is computed by the formulas of
+// ray_triangle.h and Camera::directionThroughRaster on four lanes of doubles, the operations
+// and their order those of one double, so each lane has the bits of the one-pixel code
+// (-ffp-contract=off; "avx2" does not enable FMA).
+#include "raytracer_ref/trace_band.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "core/channels.h"
+#include "core/lanes.h"
+#include "raytracer_ref/ray_triangle.h"
+
+// Vectors pass only between always-inlined functions (core/lanes.h).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace rc::reference {
+namespace {
+
+using lanes::f64x4;
+using lanes::i64x4;
+using lanes::Vec3;
+typedef float f32x4 __attribute__((vector_size(16)));
+typedef std::int32_t i32x4 __attribute__((vector_size(16)));
+typedef std::uint32_t u32x4 __attribute__((vector_size(16)));
+
+constexpr int kBlock = 4;  // a packet is kBlock x kBlock pixels; a lane row is one block row
+
+// What a hit needs of its triangle: the frame, and the planes through the eye and each edge
+// for the screen distance to that edge.
+template <typename V>
+struct HitTriangle {
+  TriangleFrame<V> frame;
+  Vec3<V> normal[3];  // of the plane through the origin and the edge opposite vertex i
+  V inPlane[3];       // length of its part in the image plane
+};
+
+template <typename V>
+RC_LANES_INLINE HitTriangle<V> hitTriangleOf(const Vec3<V> p[3], const Vec3<V>& origin, const Vec3<V>& forward) {
+  HitTriangle<V> h;
+  h.frame = triangleFrame(origin, p[0], p[1], p[2]);
+  for (int i = 0; i < 3; ++i) {
+    h.normal[i] = lanes::cross(p[(i + 1) % 3] - origin, p[(i + 2) % 3] - origin);
+    h.inPlane[i] = lanes::length(h.normal[i] - lanes::dot(h.normal[i], forward) * forward);
+  }
+  return h;
+}
+
+// Vertex `corner` of each lane's triangle, in double.
+RC_LANES_INLINE Vec3<f64x4> cornerOf(const Mesh& mesh, const std::uint32_t triangle[kBlock], int corner) {
+  Vec3<f64x4> p;
+  for (int k = 0; k < kBlock; ++k) {
+    const glm::vec3& v = mesh.positions[mesh.triangles[triangle[k]][corner]];
+    p.x[k] = double(v.x);
+    p.y[k] = double(v.y);
+    p.z[k] = double(v.z);
+  }
+  return p;
+}
+
+RC_LANES_INLINE f32x4 toFloat(const f64x4& v) { return __builtin_convertvector(v, f32x4); }
+
+// Writes the first n lanes of one block row.
+template <typename T, typename Lanes>
+RC_LANES_INLINE void store(T* plane, std::size_t pixel, const Lanes& v, int n) {
+  if (n == kBlock) {
+    std::memcpy(plane + pixel, &v, sizeof v);
+  } else {
+    for (int k = 0; k < n; ++k) plane[pixel + k] = v[k];
+  }
+}
+
+// A block row's shading: lanes whose `hit` is zero are misses and get zeros.
+struct Row {
+  std::uint32_t triangle[kBlock];
+  i32x4 hit;
+  std::size_t pixel;  // of lane 0
+  int n;              // lanes inside the image
+};
+
+template <bool kAvx2>
+struct Tracer {
+  const BandInput& in;
+  const Camera& camera;
+  const Mesh& mesh;
+  const Vec3<f64x4> origin, forward;
+  const double pixelsPerUnit;
+  // The last triangle that filled a whole block row, in every lane: neighbouring rows on one
+  // triangle share it.
+  std::uint32_t lastTriangle = std::numeric_limits<std::uint32_t>::max();
+  HitTriangle<f64x4> last{};
+  f64x4 embreeDiffMax{};  // per lane; lanes::stdMax, like std::max, ignores a NaN
+
+  RC_LANES_INLINE explicit Tracer(const BandInput& input)
+      : in(input), camera(*input.camera), mesh(*input.mesh),
+        origin(lanes::splat(Vec3<double>{camera.spec().eye.x, camera.spec().eye.y, camera.spec().eye.z})),
+        forward(lanes::splat(Vec3<double>{camera.forward().x, camera.forward().y, camera.forward().z})),
+        pixelsPerUnit(camera.height() / (2.0 * camera.tanHalfFovY())) {}
+
+  RC_LANES_INLINE void shade(const Row& row, const Vec3<f64x4>& d, const f64x4& u, const f64x4& v,
+                             const f64x4& tfar) {
+    const Planes& out = in.planes;
+    // The lanes' triangle: one shared (misses take the first hit's) or one each.
+    std::uint32_t triangle[kBlock];
+    int first = 0;
+    while (!row.hit[first]) ++first;
+    bool shared = true;
+    for (int k = 0; k < kBlock; ++k) {
+      triangle[k] = row.hit[k] ? row.triangle[k] : row.triangle[first];
+      shared = shared && triangle[k] == triangle[first];
+    }
+    HitTriangle<f64x4> each;
+    const HitTriangle<f64x4>* h = &last;
+    if (!shared || triangle[first] != lastTriangle) {
+      const Vec3<f64x4> p[3] = {cornerOf(mesh, triangle, 0), cornerOf(mesh, triangle, 1),
+                                cornerOf(mesh, triangle, 2)};
+      if (shared) {
+        last = hitTriangleOf(p, origin, forward);
+        lastTriangle = triangle[first];
+      } else {
+        each = hitTriangleOf(p, origin, forward);
+        h = &each;
+      }
+    }
+
+    const auto hit = intersectRay(h->frame, d);
+    // Parallel to the plane: no unique point; Embree's, unbounded.
+    const Vec3<f64x4> embree = baryFromEmbreeUv(u, v);
+    const i64x4 valid = hit.valid;
+    const f64x4 infinity = lanes::splat(std::numeric_limits<double>::infinity());
+    const Vec3<f64x4> b = {lanes::select(valid, hit.b.x, embree.x), lanes::select(valid, hit.b.y, embree.y),
+                           lanes::select(valid, hit.b.z, embree.z)};
+    const f64x4 t = lanes::select(valid, hit.t, tfar);
+    const f64x4 baryBound = lanes::select(valid, hit.baryBound, infinity);
+    const f64x4 depthBound = lanes::select(valid, hit.depthBound, infinity);
+    if (!in.source) {
+      const f64x4 diff = lanes::length(hit.b - embree);
+      const i64x4 counted = valid & __builtin_convertvector(row.hit, i64x4);
+      embreeDiffMax = lanes::select(counted, lanes::stdMax(embreeDiffMax, diff), embreeDiffMax);
+    }
+
+    const i32x4 miss = ~row.hit;
+    const auto write = [&](float* plane, const f64x4& value) __attribute__((always_inline)) {
+      store(plane, row.pixel, lanes::bitsAs<f32x4>(lanes::bitsAs<i32x4>(toFloat(value)) & row.hit), row.n);
+    };
+    store(out.id, row.pixel, lanes::bitsAs<u32x4>(lanes::bitsAs<i32x4>(u32x4{triangle[0], triangle[1], triangle[2],
+                                                                             triangle[3]}) |
+                                                  miss),
+          row.n);  // kNoTriangle is all ones
+    write(out.bary[0], b.x);
+    write(out.bary[1], b.y);
+    write(out.bary[2], b.z);
+    write(out.depth, t * lanes::dot(d, forward));
+    // Float output rounds each value once more: half an ulp of numbers below 2 (b leaves
+    // [0, 1] only within Embree's band), 2^-23 relative for depth.
+    write(out.baryBound, baryBound + 0x1p-23);
+    write(out.depthBound, depthBound + 0x1p-23);
+    // Screen distance to the edge opposite vertex i: the pixel's direction d against the plane
+    // through the eye and that edge, measured in the image plane d . forward = 1.
+    f64x4 nearest = infinity;
+    for (int i = 0; i < 3; ++i) {
+      const f64x4 length = h->inPlane[i];
+      const i64x4 positive = length > 0.0;
+      const f64x4 distance =
+          lanes::absOf(lanes::dot(d, h->normal[i])) / lanes::select(positive, length, lanes::splat(1.0)) * pixelsPerUnit;
+      nearest = lanes::select(positive & (distance < nearest), distance, nearest);  // std::min(nearest, distance)
+    }
+    write(out.edgeDistance, nearest);
+    glm::uvec3 tris[kBlock];
+    for (int k = 0; k < kBlock; ++k) tris[k] = mesh.triangles[triangle[k]];
+    for (const Planes::Attribute& a : out.attributes) {
+      const int n = a.components;
+      for (int c = 0; c < n; ++c) {
+        f64x4 value[3]{};
+        if (shared) {
+          for (int i = 0; i < 3; ++i) value[i] = lanes::splat(double(a.values[std::size_t(tris[0][i]) * n + c]));
+        } else {
+          for (int k = 0; k < kBlock; ++k) {
+            for (int i = 0; i < 3; ++i) value[i][k] = double(a.values[std::size_t(tris[k][i]) * n + c]);
+          }
+        }
+        write(a.out[c], b.x * value[0] + b.y * value[1] + b.z * value[2]);
+      }
+    }
+  }
+
+  RC_LANES_INLINE void missRow(const Row& row) {
+    const Planes& out = in.planes;
+    const f32x4 zero{};
+    store(out.id, row.pixel, u32x4{} + channels::kNoTriangle, row.n);
+    for (float* plane : {out.bary[0], out.bary[1], out.bary[2], out.depth, out.baryBound, out.depthBound,
+                         out.edgeDistance}) {
+      store(plane, row.pixel, zero, row.n);
+    }
+    for (const Planes::Attribute& a : out.attributes) {
+      for (int c = 0; c < a.components; ++c) store(a.out[c], row.pixel, zero, row.n);
+    }
+  }
+
+  RC_LANES_INLINE double run(int y0, int y1) {
+    const int width = camera.width();
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    // Embree changes only the hits and tfar: the other inputs are set once per band (zeroing
+    // the 1.3 kB packet per block cost 6% of a frame).
+    alignas(64) RTCRayHit16 rh{};
+    const float tNear = float(camera.zNear());
+    const float tFar = std::isinf(camera.zFar()) ? std::numeric_limits<float>::infinity() : float(camera.zFar());
+    for (int lane = 0; lane < 16; ++lane) {
+      rh.ray.org_x[lane] = rh.ray.org_y[lane] = rh.ray.org_z[lane] = 0.0f;  // camera-relative geometry
+      rh.ray.tnear[lane] = tNear;
+      rh.ray.mask[lane] = 0xFFFFFFFFu;
+    }
+    for (int yb = y0; yb < y1; yb += kBlock) {
+      double up[kBlock];
+      for (int r = 0; r < kBlock; ++r) up[r] = camera.upOffset(Camera::pixelCenter(0, yb + r).y);
+      for (int x0 = 0; x0 < width; x0 += kBlock) {
+        alignas(64) int valid[16];
+        Vec3<f64x4> d[kBlock];
+        int n[kBlock];
+        for (int r = 0; r < kBlock; ++r) {
+          const int y = yb + r;
+          n[r] = y < y1 ? std::min(kBlock, width - x0) : 0;
+          f64x4 right;
+          std::memcpy(&right, in.rightOffsets + x0, sizeof right);
+          d[r] = camera.directionFromOffsets(right, lanes::splat(up[r]));
+          const f32x4 dx = toFloat(d[r].x), dy = toFloat(d[r].y), dz = toFloat(d[r].z);
+          std::memcpy(rh.ray.dir_x + kBlock * r, &dx, sizeof dx);
+          std::memcpy(rh.ray.dir_y + kBlock * r, &dy, sizeof dy);
+          std::memcpy(rh.ray.dir_z + kBlock * r, &dz, sizeof dz);
+          for (int k = 0; k < kBlock; ++k) {
+            valid[kBlock * r + k] = k < n[r] ? -1 : 0;
+            rh.ray.tfar[kBlock * r + k] = tFar;
+            rh.hit.geomID[kBlock * r + k] = RTC_INVALID_GEOMETRY_ID;
+          }
+        }
+        rtcIntersect16(valid, in.scene, &context, &rh);
+        for (int r = 0; r < kBlock; ++r) {
+          if (n[r] == 0) continue;
+          Row row{};
+          row.pixel = std::size_t(yb + r) * width + x0;
+          row.n = n[r];
+          bool any = false;
+          for (int k = 0; k < kBlock; ++k) {
+            const int lane = kBlock * r + k;
+            const bool hit = valid[lane] && rh.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+            row.hit[k] = hit ? -1 : 0;
+            row.triangle[k] = hit ? (in.source ? in.source[rh.hit.primID[lane]] : rh.hit.primID[lane]) : 0u;
+            any = any || hit;
+          }
+          if (!any) {
+            missRow(row);
+            continue;
+          }
+          f32x4 u, v, tfar;
+          std::memcpy(&u, rh.hit.u + kBlock * r, sizeof u);
+          std::memcpy(&v, rh.hit.v + kBlock * r, sizeof v);
+          std::memcpy(&tfar, rh.ray.tfar + kBlock * r, sizeof tfar);
+          shade(row, d[r], __builtin_convertvector(u, f64x4), __builtin_convertvector(v, f64x4),
+                __builtin_convertvector(tfar, f64x4));
+        }
+      }
+    }
+    double largest = 0.0;
+    for (int k = 0; k < kBlock; ++k) largest = std::max(largest, embreeDiffMax[k]);
+    return largest;
+  }
+};
+
+}  // namespace
+
+double traceBandSse2(const BandInput& in, int y0, int y1) { return Tracer<false>(in).run(y0, y1); }
+
+__attribute__((target("avx2"))) double traceBandAvx2(const BandInput& in, int y0, int y1) {
+  return Tracer<true>(in).run(y0, y1);
+}
+
+}  // namespace rc::reference
