@@ -27,7 +27,7 @@ __attribute__((target("avx2"))) void renderTileAvx2(const Input<double>& in, con
   renderTile<double, true>(in, out, job);
 }
 
-__attribute__((target("avx2"))) void copyRowOutAvx2(std::uint32_t* to, const std::uint32_t* from, int n) {
+__attribute__((target("avx2"))) void streamRowAvx2(std::uint32_t* to, const std::uint32_t* from, int n) {
   int k = 0;
   if ((reinterpret_cast<std::uintptr_t>(to) & 31u) == 0) {
     for (; k + 8 <= n; k += 8) {
@@ -35,7 +35,7 @@ __attribute__((target("avx2"))) void copyRowOutAvx2(std::uint32_t* to, const std
                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(from + k)));
     }
   }
-  copyRowOut(to + k, from + k, n - k);
+  streamRow(to + k, from + k, n - k);
 }
 
 namespace {

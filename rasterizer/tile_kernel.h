@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "core/channels.h"
+#include "core/stream_row.h"
 #include "rasterizer/coverage.h"
 #include "rasterizer/interpolate.h"
 #include "rasterizer/setup.h"
@@ -582,24 +583,11 @@ RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out
 }
 
 // Resolve writes each tile row into a small staging row per plane (in L1), then copies each
-// plane's row out in one go: with non-temporal stores (SSE's movntdq, in every x86-64) when
-// the destination is 16-byte aligned. The planes are written once and not read back in this
-// frame, so skipping the read-for-ownership halves the memory traffic, most of a frame's
-// cost; copying plane by plane keeps whole cache lines together for the write-combining
-// buffers. renderTile ends with a store fence.
-RC_KERNEL_INLINE void copyRowOut(std::uint32_t* to, const std::uint32_t* from, int n) {
-  int k = 0;
-  if ((reinterpret_cast<std::uintptr_t>(to) & 15u) == 0) {
-    for (; k + 4 <= n; k += 4) {
-      _mm_stream_si128(reinterpret_cast<__m128i*>(to + k), _mm_loadu_si128(reinterpret_cast<const __m128i*>(from + k)));
-    }
-  }
-  for (; k < n; ++k) to[k] = from[k];
-}
-
-// copyRowOut with 32-byte non-temporal stores (tile_kernel.cpp, AVX2 target): a call per row
+// plane's row out in one go (core/stream_row.h); renderTile ends with a store fence.
+//
+// streamRow with 32-byte non-temporal stores (tile_kernel.cpp, AVX2 target): a call per row
 // and plane, since an intrinsic of the AVX2 target cannot sit in the shared inline code.
-void copyRowOutAvx2(std::uint32_t* to, const std::uint32_t* from, int n);
+void streamRowAvx2(std::uint32_t* to, const std::uint32_t* from, int n);
 
 template <typename Real, bool kAvx2>
 RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, const TileJob& job) {
@@ -765,9 +753,9 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     for (int plane = 0; plane < kFixedPlanes + components; ++plane) {
       if (!planes[plane]) continue;
       if constexpr (kAvx2) {
-        copyRowOutAvx2(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+        streamRowAvx2(planes[plane] + rowStart, stage.data() + plane * kStride, n);
       } else {
-        copyRowOut(planes[plane] + rowStart, stage.data() + plane * kStride, n);
+        streamRow(planes[plane] + rowStart, stage.data() + plane * kStride, n);
       }
     }
   }

@@ -123,30 +123,24 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
   const EmbreeScene& embreeScene = impl_->embreeScene;
   const Camera& camera = scene.camera;
 
+  // The channels in trace_band.h's plane order.
   std::vector<std::string> names = {channels::kTriangleId, channels::kBary[0], channels::kBary[1], channels::kBary[2],
                                     channels::kDepth, channels::kBaryBound, channels::kDepthBound,
                                     channels::kEdgeDistance};
-  for (const Attribute& a : scene.mesh.attributes) {
-    for (int c = 0; c < a.components; ++c) names.push_back(channels::attributeChannel(a.name, c));
-  }
-  fb.recycle(camera.width(), camera.height(), names);
   const std::vector<std::uint32_t>& source = impl_->source;
   // Every ray's direction from its column's part and its row's (Camera::directionFromOffsets).
   std::vector<double> rightOffsets((camera.width() + 3) / 4 * 4, 0.0);
   for (int x = 0; x < camera.width(); ++x) rightOffsets[x] = camera.rightOffset(Camera::pixelCenter(x, 0).x);
   reference::BandInput input{embreeScene.get(), &camera, &scene.mesh,
-                             source.empty() ? nullptr : source.data(), rightOffsets.data(), {}};
-  reference::Planes& planes = input.planes;
-  planes.id = fb.reuseUint(channels::kTriangleId);
-  for (int i = 0; i < 3; ++i) planes.bary[i] = fb.reuseFloat(channels::kBary[i]);
-  planes.depth = fb.reuseFloat(channels::kDepth);
-  planes.baryBound = fb.reuseFloat(channels::kBaryBound);
-  planes.depthBound = fb.reuseFloat(channels::kDepthBound);
-  planes.edgeDistance = fb.reuseFloat(channels::kEdgeDistance);
+                             source.empty() ? nullptr : source.data(), rightOffsets.data(), {}, {}};
   for (const Attribute& a : scene.mesh.attributes) {
-    reference::Planes::Attribute out{a.values.data(), a.components, {}};
-    for (int c = 0; c < a.components; ++c) out.out[c] = fb.reuseFloat(channels::attributeChannel(a.name, c));
-    planes.attributes.push_back(out);
+    for (int c = 0; c < a.components; ++c) names.push_back(channels::attributeChannel(a.name, c));
+    input.attributes.push_back({a.values.data(), a.components});
+  }
+  fb.recycle(camera.width(), camera.height(), names);
+  input.planes.push_back(fb.reuseUint(channels::kTriangleId));
+  for (std::size_t i = 1; i < names.size(); ++i) {
+    input.planes.push_back(reinterpret_cast<std::uint32_t*>(fb.reuseFloat(names[i])));
   }
 
   // Bands of rows, each traced the same way whatever the thread count. Each keeps its own

@@ -11,6 +11,7 @@
 
 #include "core/channels.h"
 #include "core/lanes.h"
+#include "core/stream_row.h"
 #include "raytracer_ref/ray_triangle.h"
 
 // Vectors pass only between always-inlined functions (core/lanes.h).
@@ -62,22 +63,22 @@ RC_LANES_INLINE Vec3<f64x4> cornerOf(const Mesh& mesh, const std::uint32_t trian
 
 RC_LANES_INLINE f32x4 toFloat(const f64x4& v) { return __builtin_convertvector(v, f32x4); }
 
-// Writes the first n lanes of one block row.
-template <typename T, typename Lanes>
-RC_LANES_INLINE void store(T* plane, std::size_t pixel, const Lanes& v, int n) {
-  if (n == kBlock) {
-    std::memcpy(plane + pixel, &v, sizeof v);
-  } else {
-    for (int k = 0; k < n; ++k) plane[pixel + k] = v[k];
-  }
+// A strip of kBlock rows by kStrip pixels is staged per plane (in L1), then streamed out row
+// by row (core/stream_row.h): the planes' memory traffic is then only the stores.
+constexpr int kStrip = 64;
+constexpr int kStagePlane = kBlock * kStrip;  // values of one plane in the stage
+
+template <typename Lanes>
+RC_LANES_INLINE void store(std::uint32_t* at, const Lanes& v) {
+  static_assert(sizeof v == kBlock * sizeof(std::uint32_t));
+  std::memcpy(at, &v, sizeof v);
 }
 
 // A block row's shading: lanes whose `hit` is zero are misses and get zeros.
 struct Row {
   std::uint32_t triangle[kBlock];
   i32x4 hit;
-  std::size_t pixel;  // of lane 0
-  int n;              // lanes inside the image
+  std::uint32_t* stage;  // lane 0's value of plane 0; plane p is kStagePlane further
 };
 
 template <bool kAvx2>
@@ -91,17 +92,20 @@ struct Tracer {
   // triangle share it.
   std::uint32_t lastTriangle = std::numeric_limits<std::uint32_t>::max();
   HitTriangle<f64x4> last{};
+  const float tFar;  // of every ray, reset before each packet
   f64x4 embreeDiffMax{};  // per lane; lanes::stdMax, like std::max, ignores a NaN
+  std::vector<std::uint32_t> stage;
 
   RC_LANES_INLINE explicit Tracer(const BandInput& input)
       : in(input), camera(*input.camera), mesh(*input.mesh),
         origin(lanes::splat(Vec3<double>{camera.spec().eye.x, camera.spec().eye.y, camera.spec().eye.z})),
         forward(lanes::splat(Vec3<double>{camera.forward().x, camera.forward().y, camera.forward().z})),
-        pixelsPerUnit(camera.height() / (2.0 * camera.tanHalfFovY())) {}
+        pixelsPerUnit(camera.height() / (2.0 * camera.tanHalfFovY())),
+        tFar(std::isinf(camera.zFar()) ? std::numeric_limits<float>::infinity() : float(camera.zFar())),
+        stage(input.planes.size() * kStagePlane) {}
 
   RC_LANES_INLINE void shade(const Row& row, const Vec3<f64x4>& d, const f64x4& u, const f64x4& v,
                              const f64x4& tfar) {
-    const Planes& out = in.planes;
     // The lanes' triangle: one shared (misses take the first hit's) or one each.
     std::uint32_t triangle[kBlock];
     int first = 0;
@@ -141,22 +145,19 @@ struct Tracer {
       embreeDiffMax = lanes::select(counted, lanes::stdMax(embreeDiffMax, diff), embreeDiffMax);
     }
 
-    const i32x4 miss = ~row.hit;
-    const auto write = [&](float* plane, const f64x4& value) __attribute__((always_inline)) {
-      store(plane, row.pixel, lanes::bitsAs<f32x4>(lanes::bitsAs<i32x4>(toFloat(value)) & row.hit), row.n);
+    const auto write = [&](int plane, const f64x4& value) __attribute__((always_inline)) {
+      store(row.stage + plane * kStagePlane, lanes::bitsAs<i32x4>(toFloat(value)) & row.hit);
     };
-    store(out.id, row.pixel, lanes::bitsAs<u32x4>(lanes::bitsAs<i32x4>(u32x4{triangle[0], triangle[1], triangle[2],
-                                                                             triangle[3]}) |
-                                                  miss),
-          row.n);  // kNoTriangle is all ones
-    write(out.bary[0], b.x);
-    write(out.bary[1], b.y);
-    write(out.bary[2], b.z);
-    write(out.depth, t * lanes::dot(d, forward));
+    const i32x4 id = lanes::bitsAs<i32x4>(u32x4{triangle[0], triangle[1], triangle[2], triangle[3]});
+    store(row.stage + kIdPlane * kStagePlane, id | ~row.hit);  // kNoTriangle is all ones
+    write(kBaryPlane, b.x);
+    write(kBaryPlane + 1, b.y);
+    write(kBaryPlane + 2, b.z);
+    write(kDepthPlane, t * lanes::dot(d, forward));
     // Float output rounds each value once more: half an ulp of numbers below 2 (b leaves
     // [0, 1] only within Embree's band), 2^-23 relative for depth.
-    write(out.baryBound, baryBound + 0x1p-23);
-    write(out.depthBound, depthBound + 0x1p-23);
+    write(kBaryBoundPlane, baryBound + 0x1p-23);
+    write(kDepthBoundPlane, depthBound + 0x1p-23);
     // Screen distance to the edge opposite vertex i: the pixel's direction d against the plane
     // through the eye and that edge, measured in the image plane d . forward = 1.
     f64x4 nearest = infinity;
@@ -167,10 +168,11 @@ struct Tracer {
           lanes::absOf(lanes::dot(d, h->normal[i])) / lanes::select(positive, length, lanes::splat(1.0)) * pixelsPerUnit;
       nearest = lanes::select(positive & (distance < nearest), distance, nearest);  // std::min(nearest, distance)
     }
-    write(out.edgeDistance, nearest);
+    write(kEdgeDistancePlane, nearest);
     glm::uvec3 tris[kBlock];
     for (int k = 0; k < kBlock; ++k) tris[k] = mesh.triangles[triangle[k]];
-    for (const Planes::Attribute& a : out.attributes) {
+    int plane = kAttributePlanes;
+    for (const BandInput::Attribute& a : in.attributes) {
       const int n = a.components;
       for (int c = 0; c < n; ++c) {
         f64x4 value[3]{};
@@ -181,21 +183,15 @@ struct Tracer {
             for (int i = 0; i < 3; ++i) value[i][k] = double(a.values[std::size_t(tris[k][i]) * n + c]);
           }
         }
-        write(a.out[c], b.x * value[0] + b.y * value[1] + b.z * value[2]);
+        write(plane++, b.x * value[0] + b.y * value[1] + b.z * value[2]);
       }
     }
   }
 
   RC_LANES_INLINE void missRow(const Row& row) {
-    const Planes& out = in.planes;
-    const f32x4 zero{};
-    store(out.id, row.pixel, u32x4{} + channels::kNoTriangle, row.n);
-    for (float* plane : {out.bary[0], out.bary[1], out.bary[2], out.depth, out.baryBound, out.depthBound,
-                         out.edgeDistance}) {
-      store(plane, row.pixel, zero, row.n);
-    }
-    for (const Planes::Attribute& a : out.attributes) {
-      for (int c = 0; c < a.components; ++c) store(a.out[c], row.pixel, zero, row.n);
+    store(row.stage + kIdPlane * kStagePlane, u32x4{} + channels::kNoTriangle);
+    for (std::size_t plane = kIdPlane + 1; plane < in.planes.size(); ++plane) {
+      store(row.stage + plane * kStagePlane, u32x4{});  // 0.0f
     }
   }
 
@@ -208,65 +204,80 @@ struct Tracer {
     // the 1.3 kB packet per block cost 6% of a frame).
     alignas(64) RTCRayHit16 rh{};
     const float tNear = float(camera.zNear());
-    const float tFar = std::isinf(camera.zFar()) ? std::numeric_limits<float>::infinity() : float(camera.zFar());
     for (int lane = 0; lane < 16; ++lane) {
       rh.ray.org_x[lane] = rh.ray.org_y[lane] = rh.ray.org_z[lane] = 0.0f;  // camera-relative geometry
       rh.ray.tnear[lane] = tNear;
       rh.ray.mask[lane] = 0xFFFFFFFFu;
     }
     for (int yb = y0; yb < y1; yb += kBlock) {
+      const int rows = std::min(kBlock, y1 - yb);
       double up[kBlock];
       for (int r = 0; r < kBlock; ++r) up[r] = camera.upOffset(Camera::pixelCenter(0, yb + r).y);
-      for (int x0 = 0; x0 < width; x0 += kBlock) {
-        alignas(64) int valid[16];
-        Vec3<f64x4> d[kBlock];
-        int n[kBlock];
-        for (int r = 0; r < kBlock; ++r) {
-          const int y = yb + r;
-          n[r] = y < y1 ? std::min(kBlock, width - x0) : 0;
-          f64x4 right;
-          std::memcpy(&right, in.rightOffsets + x0, sizeof right);
-          d[r] = camera.directionFromOffsets(right, lanes::splat(up[r]));
-          const f32x4 dx = toFloat(d[r].x), dy = toFloat(d[r].y), dz = toFloat(d[r].z);
-          std::memcpy(rh.ray.dir_x + kBlock * r, &dx, sizeof dx);
-          std::memcpy(rh.ray.dir_y + kBlock * r, &dy, sizeof dy);
-          std::memcpy(rh.ray.dir_z + kBlock * r, &dz, sizeof dz);
-          for (int k = 0; k < kBlock; ++k) {
-            valid[kBlock * r + k] = k < n[r] ? -1 : 0;
-            rh.ray.tfar[kBlock * r + k] = tFar;
-            rh.hit.geomID[kBlock * r + k] = RTC_INVALID_GEOMETRY_ID;
+      for (int strip = 0; strip < width; strip += kStrip) {
+        const int stripEnd = std::min(width, strip + kStrip);
+        for (int x0 = strip; x0 < stripEnd; x0 += kBlock) traceBlock(rh, context, rows, x0, up, strip);
+        for (std::size_t plane = 0; plane < in.planes.size(); ++plane) {
+          for (int r = 0; r < rows; ++r) {
+            streamRow(in.planes[plane] + std::size_t(yb + r) * width + strip,
+                      stage.data() + plane * kStagePlane + r * kStrip, stripEnd - strip);
           }
-        }
-        rtcIntersect16(valid, in.scene, &context, &rh);
-        for (int r = 0; r < kBlock; ++r) {
-          if (n[r] == 0) continue;
-          Row row{};
-          row.pixel = std::size_t(yb + r) * width + x0;
-          row.n = n[r];
-          bool any = false;
-          for (int k = 0; k < kBlock; ++k) {
-            const int lane = kBlock * r + k;
-            const bool hit = valid[lane] && rh.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
-            row.hit[k] = hit ? -1 : 0;
-            row.triangle[k] = hit ? (in.source ? in.source[rh.hit.primID[lane]] : rh.hit.primID[lane]) : 0u;
-            any = any || hit;
-          }
-          if (!any) {
-            missRow(row);
-            continue;
-          }
-          f32x4 u, v, tfar;
-          std::memcpy(&u, rh.hit.u + kBlock * r, sizeof u);
-          std::memcpy(&v, rh.hit.v + kBlock * r, sizeof v);
-          std::memcpy(&tfar, rh.ray.tfar + kBlock * r, sizeof tfar);
-          shade(row, d[r], __builtin_convertvector(u, f64x4), __builtin_convertvector(v, f64x4),
-                __builtin_convertvector(tfar, f64x4));
         }
       }
     }
+    _mm_sfence();  // the non-temporal stores are visible before the band counts as done
     double largest = 0.0;
     for (int k = 0; k < kBlock; ++k) largest = std::max(largest, embreeDiffMax[k]);
     return largest;
+  }
+
+  // One packet: the 4x4 block at column x0 of the current block row, of which the first
+  // `rows` rows are in the band; up: the rows' Camera::upOffset. Its values go to the stage,
+  // which holds the columns from `strip` on.
+  RC_LANES_INLINE void traceBlock(RTCRayHit16& rh, RTCIntersectContext& context, int rows, int x0,
+                                  const double up[kBlock], int strip) {
+    const int width = camera.width();
+    alignas(64) int valid[16];
+    Vec3<f64x4> d[kBlock];
+    int n[kBlock];
+    for (int r = 0; r < kBlock; ++r) {
+      n[r] = r < rows ? std::min(kBlock, width - x0) : 0;
+      f64x4 right;
+      std::memcpy(&right, in.rightOffsets + x0, sizeof right);
+      d[r] = camera.directionFromOffsets(right, lanes::splat(up[r]));
+      const f32x4 dx = toFloat(d[r].x), dy = toFloat(d[r].y), dz = toFloat(d[r].z);
+      std::memcpy(rh.ray.dir_x + kBlock * r, &dx, sizeof dx);
+      std::memcpy(rh.ray.dir_y + kBlock * r, &dy, sizeof dy);
+      std::memcpy(rh.ray.dir_z + kBlock * r, &dz, sizeof dz);
+      for (int k = 0; k < kBlock; ++k) {
+        valid[kBlock * r + k] = k < n[r] ? -1 : 0;
+        rh.ray.tfar[kBlock * r + k] = tFar;
+        rh.hit.geomID[kBlock * r + k] = RTC_INVALID_GEOMETRY_ID;
+      }
+    }
+    rtcIntersect16(valid, in.scene, &context, &rh);
+    for (int r = 0; r < kBlock; ++r) {
+      if (n[r] == 0) continue;
+      Row row{};
+      row.stage = stage.data() + r * kStrip + (x0 - strip);
+      bool any = false;
+      for (int k = 0; k < kBlock; ++k) {
+        const int lane = kBlock * r + k;
+        const bool hit = valid[lane] && rh.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+        row.hit[k] = hit ? -1 : 0;
+        row.triangle[k] = hit ? (in.source ? in.source[rh.hit.primID[lane]] : rh.hit.primID[lane]) : 0u;
+        any = any || hit;
+      }
+      if (!any) {
+        missRow(row);
+        continue;
+      }
+      f32x4 u, v, tfar;
+      std::memcpy(&u, rh.hit.u + kBlock * r, sizeof u);
+      std::memcpy(&v, rh.hit.v + kBlock * r, sizeof v);
+      std::memcpy(&tfar, rh.ray.tfar + kBlock * r, sizeof tfar);
+      shade(row, d[r], __builtin_convertvector(u, f64x4), __builtin_convertvector(v, f64x4),
+            __builtin_convertvector(tfar, f64x4));
+    }
   }
 };
 

@@ -7,7 +7,6 @@
 
 #include <embree3/rtcore.h>
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -15,20 +14,16 @@
 
 namespace rc::reference {
 
-// Where each channel of the output goes, all planes of width x height values.
-struct Planes {
-  std::uint32_t* id;
-  float* bary[3];
-  float* depth;
-  float* baryBound;
-  float* depthBound;
-  float* edgeDistance;
-  struct Attribute {
-    const float* values;  // the mesh's, vertex-major
-    int components;
-    std::array<float*, 4> out;
-  };
-  std::vector<Attribute> attributes;
+// The output planes, in this order, float planes as their bits: tri.id, bary.b0..b2,
+// depth.z, bound.bary, bound.depth, edge.dist, then each attribute's components in turn.
+enum : int {
+  kIdPlane = 0,
+  kBaryPlane = 1,
+  kDepthPlane = 4,
+  kBaryBoundPlane = 5,
+  kDepthBoundPlane = 6,
+  kEdgeDistancePlane = 7,
+  kAttributePlanes = 8,
 };
 
 struct BandInput {
@@ -37,7 +32,12 @@ struct BandInput {
   const Mesh* mesh;
   const std::uint32_t* source;  // Embree primID -> mesh triangle; null: the same index
   const double* rightOffsets;   // camera.rightOffset of each column's pixel centre, padded to 4
-  Planes planes;
+  std::vector<std::uint32_t*> planes;  // each width x height values
+  struct Attribute {
+    const float* values;  // the mesh's, vertex-major
+    int components;
+  };
+  std::vector<Attribute> attributes;  // their planes follow kAttributePlanes in this order
 };
 
 // Traces rows [y0, y1) (y0 a multiple of 4) and writes every pixel of them, misses too.
