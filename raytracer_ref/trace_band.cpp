@@ -93,7 +93,10 @@ struct Tracer {
   std::uint32_t lastTriangle = std::numeric_limits<std::uint32_t>::max();
   HitTriangle<f64x4> last{};
   const float tFar;  // of every ray, reset before each packet
-  f64x4 embreeDiffMax{};  // per lane; lanes::stdMax, like std::max, ignores a NaN
+  // |Embree's b - b|^2, largest per lane; its square root at the end is the largest of the
+  // square roots (sqrt is correctly rounded, so monotonic), as glm::length gives them.
+  // lanes::stdMax, like std::max, skips a NaN.
+  f64x4 embreeDiffSquaredMax{};
   std::vector<std::uint32_t> stage;
 
   RC_LANES_INLINE explicit Tracer(const BandInput& input)
@@ -140,9 +143,10 @@ struct Tracer {
     const f64x4 baryBound = lanes::select(valid, hit.baryBound, infinity);
     const f64x4 depthBound = lanes::select(valid, hit.depthBound, infinity);
     if (!in.source) {
-      const f64x4 diff = lanes::length(hit.b - embree);
+      const Vec3<f64x4> diff = hit.b - embree;
       const i64x4 counted = valid & __builtin_convertvector(row.hit, i64x4);
-      embreeDiffMax = lanes::select(counted, lanes::stdMax(embreeDiffMax, diff), embreeDiffMax);
+      embreeDiffSquaredMax =
+          lanes::select(counted, lanes::stdMax(embreeDiffSquaredMax, lanes::dot(diff, diff)), embreeDiffSquaredMax);
     }
 
     const auto write = [&](int plane, const f64x4& value) __attribute__((always_inline)) {
@@ -226,8 +230,8 @@ struct Tracer {
     }
     _mm_sfence();  // the non-temporal stores are visible before the band counts as done
     double largest = 0.0;
-    for (int k = 0; k < kBlock; ++k) largest = std::max(largest, embreeDiffMax[k]);
-    return largest;
+    for (int k = 0; k < kBlock; ++k) largest = std::max(largest, embreeDiffSquaredMax[k]);
+    return std::sqrt(largest);
   }
 
   // One packet: the 4x4 block at column x0 of the current block row, of which the first
