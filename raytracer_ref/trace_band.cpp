@@ -81,6 +81,7 @@ struct Row {
   std::uint32_t* stage;  // lane 0's value of plane 0; plane p is kStagePlane further
 };
 
+// kAvx2 only keeps the two builds' instantiations apart; everything is inlined into them.
 template <bool kAvx2>
 struct Tracer {
   const BandInput& in;
@@ -101,8 +102,8 @@ struct Tracer {
 
   RC_LANES_INLINE explicit Tracer(const BandInput& input)
       : in(input), camera(*input.camera), mesh(*input.mesh),
-        origin(lanes::splat(Vec3<double>{camera.spec().eye.x, camera.spec().eye.y, camera.spec().eye.z})),
-        forward(lanes::splat(Vec3<double>{camera.forward().x, camera.forward().y, camera.forward().z})),
+        origin(lanes::splat(vec3Of(camera.spec().eye))),
+        forward(lanes::splat(vec3Of(camera.forward()))),
         pixelsPerUnit(camera.height() / (2.0 * camera.tanHalfFovY())),
         tFar(std::isinf(camera.zFar()) ? std::numeric_limits<float>::infinity() : float(camera.zFar())),
         stage(input.planes.size() * kStagePlane) {}
