@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <glm/vec3.hpp>
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -87,6 +88,10 @@ template <typename V>
 RC_LANES_INLINE V length(const Vec3<V>& a) {
   return sqrtOf(dot(a, a));
 }
+// To and from glm's double vectors.
+RC_LANES_INLINE Vec3<double> vec3Of(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+RC_LANES_INLINE glm::dvec3 dvec3Of(const Vec3<double>& v) { return {v.x, v.y, v.z}; }
+
 // Every lane the same value (not 0 + v, which turns -0 into +0).
 RC_LANES_INLINE f64x4 splat(double v) { return f64x4{v, v, v, v}; }
 RC_LANES_INLINE Vec3<f64x4> splat(const Vec3<double>& a) { return {splat(a.x), splat(a.y), splat(a.z)}; }

@@ -21,10 +21,7 @@ template <typename V>
 RC_LANES_INLINE lanes::Vec3<V> baryFromEmbreeUv(const V& u, const V& v) {
   return {1.0 - u - v, u, v};
 }
-inline glm::dvec3 baryFromEmbreeUv(float u, float v) {
-  const lanes::Vec3<double> b = baryFromEmbreeUv(double(u), double(v));
-  return {b.x, b.y, b.z};
-}
+inline glm::dvec3 baryFromEmbreeUv(float u, float v) { return lanes::dvec3Of(baryFromEmbreeUv(double(u), double(v))); }
 
 struct DoubleHit {
   bool valid;         // false when the ray is parallel to the triangle's plane
@@ -104,14 +101,13 @@ RC_LANES_INLINE auto intersectRay(const TriangleFrame<V>& f, const lanes::Vec3<V
   return LaneHit<V, decltype(valid)>{valid, {1.0 - b1 - b2, b1, b2}, f.tNumerator * inv, baryBound, depthBound};
 }
 
-inline lanes::Vec3<double> vec3Of(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
 // One ray from o along d against the triangle (v0, v1, v2).
 inline DoubleHit intersectRayTriangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& v0,
                                       const glm::dvec3& v1, const glm::dvec3& v2) {
+  using lanes::vec3Of;
   const auto hit = intersectRay(triangleFrame(vec3Of(o), vec3Of(v0), vec3Of(v1), vec3Of(v2)), vec3Of(d));
   if (!hit.valid) return {false, glm::dvec3(0.0), 0.0, 0.0, 0.0};
-  return {true, {hit.b.x, hit.b.y, hit.b.z}, hit.t, hit.baryBound, hit.depthBound};
+  return {true, lanes::dvec3Of(hit.b), hit.t, hit.baryBound, hit.depthBound};
 }
 
 }  // namespace rc

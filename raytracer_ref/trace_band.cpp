@@ -102,8 +102,8 @@ struct Tracer {
 
   RC_LANES_INLINE explicit Tracer(const BandInput& input)
       : in(input), camera(*input.camera), mesh(*input.mesh),
-        origin(lanes::splat(vec3Of(camera.spec().eye))),
-        forward(lanes::splat(vec3Of(camera.forward()))),
+        origin(lanes::splat(lanes::vec3Of(camera.spec().eye))),
+        forward(lanes::splat(lanes::vec3Of(camera.forward()))),
         pixelsPerUnit(camera.height() / (2.0 * camera.tanHalfFovY())),
         tFar(std::isinf(camera.zFar()) ? std::numeric_limits<float>::infinity() : float(camera.zFar())),
         stage(input.planes.size() * kStagePlane) {}

@@ -76,8 +76,7 @@ class Camera {
   CameraRay rayThroughPixel(int x, int y) const;
   // Direction (direction . forward == 1) of the ray through raster position r, in double.
   glm::dvec3 directionThroughRaster(const glm::dvec2& r) const {
-    const lanes::Vec3<double> d = directionThroughRaster(r.x, r.y);
-    return {d.x, d.y, d.z};
+    return lanes::dvec3Of(directionThroughRaster(r.x, r.y));
   }
   // The same for a double or for four lanes of raster positions (core/lanes.h), with the same
   // bits in every lane, in two halves for tracing many pixels: the offset along right_ of a
