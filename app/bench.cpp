@@ -155,6 +155,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.binMs = median(bin);
       row.tilesMs = median(tiles);
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
+      row.referenceIsa = settings.reference.isa;
       row.referenceBuildMs = median(build);
       row.referenceTraceMs = median(trace);
       row.speedup = row.referenceTraceMs / row.rasterMs;
@@ -178,7 +179,8 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
                           {"raster_ms", r.rasterMs}, {"raster_ms_min", r.rasterMsMin}, {"raster_ms_max", r.rasterMsMax},
                           {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
                                         {"tiles", r.tilesMs}}},
-                          {"reference_build_ms", r.referenceBuildMs}, {"reference_trace_ms", r.referenceTraceMs},
+                          {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
+                          {"reference_trace_ms", r.referenceTraceMs},
                           {"speedup", r.speedup}, {"speedup_with_build", r.speedupWithBuild},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
                           {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
@@ -215,6 +217,7 @@ std::vector<BenchRow> readBenchJson(const std::string& path) {
       r.height = j.at("height").get<int>();
       r.threads = j.at("threads").get<int>();
       r.rasterMs = j.at("raster_ms").get<double>();
+      r.referenceIsa = j.value("reference_isa", std::string());
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
       r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
       r.speedup = j.at("speedup").get<double>();
@@ -237,19 +240,20 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   std::ostringstream out;
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
-         "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms\n";
+         "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
+         "reference_isa\n";
   char line[768];
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
                   "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s\n",
+                  "%.4g,%.4g,%s,%s\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
-                  r.disagreementFraction, exr);
+                  r.disagreementFraction, exr, r.referenceIsa.c_str());
     out << line;
   }
   return out.str();

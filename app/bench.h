@@ -34,6 +34,7 @@ struct BenchRow {
   // Median time to write the setting's output as `render -o` does (ZIP EXR, through a
   // temporary file), measured for the default setting only; negative for the others.
   double exrWriteMs = -1;
+  std::string referenceIsa;       // Embree's
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs
   double speedup = 0;             // referenceTraceMs / rasterMs

@@ -36,6 +36,17 @@ bool cpuSupports(const std::string& isa) {
   throw usageError("--embree-isa must be one of sse2, sse4.2, avx, avx2, avx512; got '" + isa + "'");
 }
 
+}  // namespace
+
+std::string fastestEmbreeIsa() {
+  for (const char* isa : {"avx512", "avx2", "avx", "sse4.2"}) {
+    if (cpuSupports(isa)) return isa;
+  }
+  return "sse2";
+}
+
+namespace {
+
 // Returns the mesh triangle of each Embree triangle (empty: the same index).
 std::vector<std::uint32_t> buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh,
                                          const Camera& camera) {

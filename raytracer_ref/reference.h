@@ -39,6 +39,10 @@ class ReferenceTracer {
   std::unique_ptr<Impl> impl_;
 };
 
+// The widest Embree ISA this CPU runs: avx512, avx2, avx, sse4.2 or sse2. bench traces with it
+// unless told otherwise, so the speed-ups are against Embree's fastest mode on the machine.
+std::string fastestEmbreeIsa();
+
 // Build and trace in one call.
 Framebuffer renderReference(const Scene& scene, const ReferenceOptions& options);
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include "core/exr_io.h"
+#include "raytracer_ref/reference.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
@@ -177,9 +178,11 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   for (const auto& row : rows) {
     for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
                             "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
-                            "bary_p999_error", "disagreement_fraction"}) {
+                            "bary_p999_error", "disagreement_fraction", "reference_isa"}) {
       ASSERT_TRUE(row.contains(key)) << key;
     }
+    // Unpinned, the reference runs Embree's fastest mode on this CPU.
+    EXPECT_EQ(row["reference_isa"], rc::fastestEmbreeIsa());
     EXPECT_NEAR(row["speedup"].get<double>(), row["reference_trace_ms"].get<double>() / row["raster_ms"].get<double>(), 1e-9);
     // The spread brackets the median; every stage took time, and none more than the slowest frame.
     EXPECT_LE(row["raster_ms_min"].get<double>(), row["raster_ms"].get<double>());
@@ -216,7 +219,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   int lines = 0;
   while (std::getline(csv, line)) {
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 24) << "25 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 25) << "26 columns in every line: " << line;
   }
   EXPECT_EQ(lines, 10);  // header + 9 settings
   std::ifstream svgFile(dir / "b.svg");
@@ -229,6 +232,20 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const CliRun bad = run("check cube -q --report " + (dir / "rep").string() + " --bench-json " + (dir / "bad.json").string());
   EXPECT_EQ(bad.exitCode, 3) << bad.output;
   EXPECT_NE(bad.output.find("/rows/0"), std::string::npos) << bad.output;
+}
+
+// --embree-isa pins the reference's ISA in bench too; the table and the rows name it.
+TEST(Cli, BenchTracesWithThePinnedEmbreeIsa) {
+  const rc::testing::TempDir temp;
+  const fs::path json = temp.path() / "b.json";
+  const CliRun r = run("bench floor --runs 1 -q --embree-isa sse2 --json " + json.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("reference: Embree sse2\n"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+  for (const auto& row : j["rows"]) EXPECT_EQ(row["reference_isa"], "sse2");
+  const CliRun unpinned = run("bench floor --runs 1 -q");
+  EXPECT_NE(unpinned.output.find("reference: Embree " + rc::fastestEmbreeIsa() + " (the fastest"), std::string::npos)
+      << unpinned.output;
 }
 
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
