@@ -21,6 +21,10 @@ namespace rc::lanes {
 
 typedef double f64x4 __attribute__((vector_size(32)));
 typedef std::int64_t i64x4 __attribute__((vector_size(32)));
+// Four lanes of 32 bits: what four double lanes narrow to.
+typedef float f32x4 __attribute__((vector_size(16)));
+typedef std::int32_t i32x4 __attribute__((vector_size(16)));
+typedef std::uint32_t u32x4 __attribute__((vector_size(16)));
 
 #define RC_LANES_INLINE inline __attribute__((always_inline))
 

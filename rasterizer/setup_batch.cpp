@@ -21,8 +21,8 @@ namespace {
 using formulas::f64x4;
 using formulas::i64x4;
 using lanes::bitsAs;
-typedef std::int32_t i32x4 __attribute__((vector_size(16)));
-typedef float f32x4 __attribute__((vector_size(16)));
+using lanes::f32x4;
+using lanes::i32x4;
 
 #define RC_BATCH_INLINE inline __attribute__((always_inline))
 

@@ -25,7 +25,7 @@
 namespace rc {
 namespace {
 
-constexpr int kRowsPerTask = 8;  // a multiple of the 4-row blocks of trace_band.h
+constexpr int kRowsPerTask = 2 * reference::kBlock;  // whole 4-row blocks of trace_band.h
 
 bool cpuSupports(const std::string& isa) {
   if (isa == "sse2") return __builtin_cpu_supports("sse2");
@@ -139,9 +139,7 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
                                     channels::kDepth, channels::kBaryBound, channels::kDepthBound,
                                     channels::kEdgeDistance};
   const std::vector<std::uint32_t>& source = impl_->source;
-  // Every ray's direction from its column's part and its row's (Camera::directionFromOffsets).
-  std::vector<double> rightOffsets((camera.width() + 3) / 4 * 4, 0.0);
-  for (int x = 0; x < camera.width(); ++x) rightOffsets[x] = camera.rightOffset(Camera::pixelCenter(x, 0).x);
+  const std::vector<double> rightOffsets = reference::rightOffsetsOf(camera);
   reference::BandInput input{embreeScene.get(), &camera, &scene.mesh,
                              source.empty() ? nullptr : source.data(), rightOffsets.data(), {}, {}};
   for (const Attribute& a : scene.mesh.attributes) {

@@ -20,14 +20,12 @@
 namespace rc::reference {
 namespace {
 
+using lanes::f32x4;
 using lanes::f64x4;
+using lanes::i32x4;
 using lanes::i64x4;
+using lanes::u32x4;
 using lanes::Vec3;
-typedef float f32x4 __attribute__((vector_size(16)));
-typedef std::int32_t i32x4 __attribute__((vector_size(16)));
-typedef std::uint32_t u32x4 __attribute__((vector_size(16)));
-
-constexpr int kBlock = 4;  // a packet is kBlock x kBlock pixels; a lane row is one block row
 
 // What a hit needs of its triangle: the frame, and the planes through the eye and each edge
 // for the screen distance to that edge.
@@ -287,6 +285,12 @@ struct Tracer {
 };
 
 }  // namespace
+
+std::vector<double> rightOffsetsOf(const Camera& camera) {
+  std::vector<double> offsets((camera.width() + kBlock - 1) / kBlock * kBlock, 0.0);
+  for (int x = 0; x < camera.width(); ++x) offsets[x] = camera.rightOffset(Camera::pixelCenter(x, 0).x);
+  return offsets;
+}
 
 double traceBandSse2(const BandInput& in, int y0, int y1) { return Tracer<false>(in).run(y0, y1); }
 

@@ -14,6 +14,8 @@
 
 namespace rc::reference {
 
+constexpr int kBlock = 4;  // a packet is kBlock x kBlock pixels; a lane row is one block row
+
 // The output planes, in this order, float planes as their bits: tri.id, bary.b0..b2,
 // depth.z, bound.bary, bound.depth, edge.dist, then each attribute's components in turn.
 enum : int {
@@ -31,7 +33,7 @@ struct BandInput {
   const Camera* camera;
   const Mesh* mesh;
   const std::uint32_t* source;  // Embree primID -> mesh triangle; null: the same index
-  const double* rightOffsets;   // camera.rightOffset of each column's pixel centre, padded to 4
+  const double* rightOffsets;   // rightOffsetsOf(camera)
   std::vector<std::uint32_t*> planes;  // each width x height values
   struct Attribute {
     const float* values;  // the mesh's, vertex-major
@@ -39,6 +41,10 @@ struct BandInput {
   };
   std::vector<Attribute> attributes;  // their planes follow kAttributePlanes in this order
 };
+
+// Camera::rightOffset of each column's pixel centre, padded to whole blocks: every ray's
+// direction is Camera::directionFromOffsets of its column's part and its row's.
+std::vector<double> rightOffsetsOf(const Camera& camera);
 
 // Traces rows [y0, y1) (y0 a multiple of 4) and writes every pixel of them, misses too.
 // Returns the largest |Embree's barycentrics - the double ones| over their hits (0 when
