@@ -8,7 +8,6 @@
 #include "raytracer_ref/reference.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -18,7 +17,6 @@
 #include "core/parallel.h"
 #include "core/preview.h"
 #include "raytracer_ref/embree_device.h"
-#include "raytracer_ref/ray_triangle.h"
 #include "raytracer_ref/subdivide.h"
 #include "raytracer_ref/trace_band.h"
 
