@@ -83,6 +83,11 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   BenchSetting sse2 = make("perspective-float-8bit-sse2", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
   sse2.raster.isa = KernelIsa::kSse2;
   settings.push_back(sse2);
+  if (resolveKernelIsa(base.isa) == KernelIsa::kAvx512) {  // what the 512-bit registers buy
+    BenchSetting avx2 = make("perspective-float-8bit-avx2", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+    avx2.raster.isa = KernelIsa::kAvx2;
+    settings.push_back(avx2);
+  }
   BenchSetting lean = make("perspective-float-8bit-nodiag", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
   lean.raster.diagnostics = false;
   settings.push_back(lean);
@@ -155,6 +160,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.binMs = median(bin);
       row.tilesMs = median(tiles);
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
+      row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
       row.referenceIsa = settings.reference.isa;
       row.referenceBuildMs = median(build);
       row.referenceTraceMs = median(trace);
@@ -179,7 +185,7 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
                           {"raster_ms", r.rasterMs}, {"raster_ms_min", r.rasterMsMin}, {"raster_ms_max", r.rasterMsMax},
                           {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
                                         {"tiles", r.tilesMs}}},
-                          {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
+                          {"raster_isa", r.rasterIsa}, {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
                           {"reference_trace_ms", r.referenceTraceMs},
                           {"speedup", r.speedup}, {"speedup_with_build", r.speedupWithBuild},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
@@ -217,6 +223,7 @@ std::vector<BenchRow> readBenchJson(const std::string& path) {
       r.height = j.at("height").get<int>();
       r.threads = j.at("threads").get<int>();
       r.rasterMs = j.at("raster_ms").get<double>();
+      r.rasterIsa = j.value("raster_isa", std::string());
       r.referenceIsa = j.value("reference_isa", std::string());
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
       r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
@@ -241,19 +248,19 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
-         "reference_isa\n";
+         "reference_isa,raster_isa\n";
   char line[768];
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
                   "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
-                  r.disagreementFraction, exr, r.referenceIsa.c_str());
+                  r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str());
     out << line;
   }
   return out.str();

@@ -19,7 +19,8 @@ struct BenchSetting {
 
 // The settings bench sweeps, from the command line's rasterizer options: the default, affine,
 // double precision, 4 and 16 subpixel bits, the default on one thread (the thread-scaling
-// ratio), with the SSE2 kernels (what SIMD width buys) and without the diagnostic channels.
+// ratio), with the SSE2 kernels (what SIMD width buys; and the AVX2 ones where the default
+// resolves to AVX-512), without the diagnostic channels and without culling.
 std::vector<BenchSetting> benchSettings(const RasterOptions& base);
 
 struct BenchRow {
@@ -34,6 +35,7 @@ struct BenchRow {
   // Median time to write the setting's output as `render -o` does (ZIP EXR, through a
   // temporary file), measured for the default setting only; negative for the others.
   double exrWriteMs = -1;
+  std::string rasterIsa;          // the rasterizer's kernels as this setting resolved on this CPU
   std::string referenceIsa;       // Embree's
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs

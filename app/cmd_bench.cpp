@@ -37,14 +37,15 @@ int runBenchCommand(BenchArgs& args) {
   }
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
-  const int settingsCount = int(benchSettings(RasterOptions{}).size());
+  const int settingsCount = int(benchSettings(args.settings.raster).size());
   Progress progress(int(scenes.size()) * (1 + settingsCount), args.quiet);
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
 
   std::printf("medians of %d runs; raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
-              "reference: Embree %s%s\n",
-              args.runs, resolveThreadCount(args.settings.threads), args.settings.reference.isa.c_str(),
+              "rasterizer kernels: %s unless the setting names another; reference: Embree %s%s\n",
+              args.runs, resolveThreadCount(args.settings.threads),
+              kernelIsaName(resolveKernelIsa(args.settings.raster.isa)), args.settings.reference.isa.c_str(),
               args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)");
   std::printf("%-20s %-31s %9s %15s %9s %9s %8s %8s %9s %9s %9s %8s\n", "scene", "setting", "raster ms",
               "(min..max)", "ref build", "ref trace", "speedup", "w/build", "bary max", "bary p999", "disagree",

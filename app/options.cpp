@@ -60,7 +60,7 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
                       "instruction set of the rasterizer's pixel kernels; every choice gives the same bits")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, KernelIsa>{{"auto", KernelIsa::kAuto}, {"sse2", KernelIsa::kSse2},
-                                           {"avx2", KernelIsa::kAvx2}},
+                                           {"avx2", KernelIsa::kAvx2}, {"avx512", KernelIsa::kAvx512}},
           CLI::ignore_case))
       ->default_str("auto");
   command->add_flag("--no-diagnostics{false}", s.raster.diagnostics,

@@ -6,6 +6,8 @@
 #include <benchmark/benchmark.h>
 
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rasterizer/rasterizer.h"
@@ -166,10 +168,12 @@ struct TileFixture {
   }
 };
 
-template <typename Real, bool kAvx2>
+template <typename Real, KernelIsa kIsa>
 void BM_Tile(benchmark::State& state) {
-  if (kAvx2 && !__builtin_cpu_supports("avx2")) {
-    state.SkipWithError("no AVX2 on this CPU");
+  try {
+    resolveKernelIsa(kIsa);
+  } catch (const std::exception&) {
+    state.SkipWithError((std::string("no ") + kernelIsaName(kIsa) + " on this CPU").c_str());
     return;
   }
   const int count = int(state.range(0));
@@ -177,7 +181,9 @@ void BM_Tile(benchmark::State& state) {
   TileFixture<Real> f(count, 3.0, perspective, true);
   const kernel::TileJob job{f.bins.data(), f.bins.size(), 0, 0, 63, 63};
   for (auto _ : state) {
-    if (kAvx2) {
+    if (kIsa == KernelIsa::kAvx512) {
+      kernel::renderTileAvx512(f.in, f.out, job);
+    } else if (kIsa == KernelIsa::kAvx2) {
       kernel::renderTileAvx2(f.in, f.out, job);
     } else {
       kernel::renderTileSse2(f.in, f.out, job);
@@ -190,10 +196,12 @@ void BM_Tile(benchmark::State& state) {
 }
 // Args: triangles in the tile (1: one covering it), perspective (1) or affine (0).
 #define RC_TILE_ARGS ->Args({1, 1})->Args({1, 0})->Args({2000, 1})
-BENCHMARK(BM_Tile<float, false>) RC_TILE_ARGS;
-BENCHMARK(BM_Tile<float, true>) RC_TILE_ARGS;
-BENCHMARK(BM_Tile<double, false>) RC_TILE_ARGS;
-BENCHMARK(BM_Tile<double, true>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<float, KernelIsa::kSse2>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<float, KernelIsa::kAvx2>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<float, KernelIsa::kAvx512>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<double, KernelIsa::kSse2>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<double, KernelIsa::kAvx2>) RC_TILE_ARGS;
+BENCHMARK(BM_Tile<double, KernelIsa::kAvx512>) RC_TILE_ARGS;
 
 // Whole frames of the scalable scene at 1920x1080 with the default settings, on 1 or 2 threads
 // (the second argument), with the last frame's per-stage times.

@@ -47,14 +47,19 @@ const char* kernelIsaName(KernelIsa isa) {
   switch (isa) {
     case KernelIsa::kSse2: return "sse2";
     case KernelIsa::kAvx2: return "avx2";
+    case KernelIsa::kAvx512: return "avx512";
     default: return "auto";
   }
 }
 
 KernelIsa resolveKernelIsa(KernelIsa isa) {
   const bool avx2 = __builtin_cpu_supports("avx2");
-  if (isa == KernelIsa::kAuto) return avx2 ? KernelIsa::kAvx2 : KernelIsa::kSse2;
+  const bool avx512 = avx2 && kernel::cpuHasKernelAvx512();
+  if (isa == KernelIsa::kAuto) return avx512 ? KernelIsa::kAvx512 : avx2 ? KernelIsa::kAvx2 : KernelIsa::kSse2;
   if (isa == KernelIsa::kAvx2 && !avx2) throw usageError("this CPU lacks AVX2; choose --raster-isa sse2 or auto");
+  if (isa == KernelIsa::kAvx512 && !avx512) {
+    throw usageError("this CPU lacks AVX-512 (F, VL, DQ and BW); choose --raster-isa avx2, sse2 or auto");
+  }
   return isa;
 }
 
@@ -226,7 +231,7 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
-    if (resolveKernelIsa(o.isa) == KernelIsa::kAvx2) {
+    if (resolveKernelIsa(o.isa) != KernelIsa::kSse2) {  // AVX-512 adds nothing the set-up uses
       batchSetup = batch::setupCoverageAvx2;
     } else {
       batchSetup = batch::setupCoverageSse2;
@@ -253,7 +258,7 @@ struct Pipeline {
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
     frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
-    const auto transformRange = resolveKernelIsa(options.isa) == KernelIsa::kAvx2 ? transformAvx2 : transformScalar;
+    const auto transformRange = resolveKernelIsa(options.isa) != KernelIsa::kSse2 ? transformAvx2 : transformScalar;
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
@@ -485,13 +490,15 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   // depthTieAt's 5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB, evaluated in Real: its own
   // handful of roundings (under 8 u relative) is covered by the factor 1 + 2^-16.
   in.tieScale = Real(5.0 * p.context.unitRoundoff / p.context.keyB * (1.0 + 0x1p-16));
-  const bool avx2 = resolveKernelIsa(options.isa) == KernelIsa::kAvx2;
+  const KernelIsa isa = resolveKernelIsa(options.isa);
   parallelFor(p.tileCount(), options.threads, [&](int tile) {
     const int tx = tile % p.tilesX, ty = tile / p.tilesX;
     kernel::TileJob job{frame.binned.data() + frame.binStart[tile], frame.binStart[tile + 1] - frame.binStart[tile],
                         tx * kTileSize, ty * kTileSize, std::min(p.width, (tx + 1) * kTileSize) - 1,
                         std::min(p.height, (ty + 1) * kTileSize) - 1};
-    if (avx2) {
+    if (isa == KernelIsa::kAvx512) {
+      kernel::renderTileAvx512(in, out, job);
+    } else if (isa == KernelIsa::kAvx2) {
       kernel::renderTileAvx2(in, out, job);
     } else {
       kernel::renderTileSse2(in, out, job);

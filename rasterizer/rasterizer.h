@@ -35,7 +35,10 @@ enum class Culling {
 // The instruction set of the pixel kernels. Every level runs the same sequence of IEEE
 // operations lane by lane (no FMA, no approximate reciprocals), so the output bits are the same
 // on every level; auto picks the widest the CPU has.
-enum class KernelIsa { kAuto, kSse2, kAvx2 };
+// avx512 (AVX-512 F, VL, DQ and BW) is the AVX2 kernel compiled with AVX-512 enabled: the tiles'
+// int64 coverage lanes and 8-wide doubles become one register each; set-up and transform
+// stay AVX2 there.
+enum class KernelIsa { kAuto, kSse2, kAvx2, kAvx512 };
 
 const char* interpolationName(Interpolation mode);
 const char* kernelIsaName(KernelIsa isa);

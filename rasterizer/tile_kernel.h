@@ -1,9 +1,9 @@
 // The per-tile pixel kernels: coverage + depth test into a tile-local visibility buffer, then
 // resolve (barycentrics, depth, attributes and diagnostics of each pixel's winner), eight pixels
 // of a row at a time in GCC vector extensions. The same source is compiled for SSE2 (any
-// x86-64) and for AVX2 (tile_kernel.cpp dispatches at run time); each lane runs the formulas
-// of setup.h and interpolate.h in the same order, without FMA, so both give the same bits
-// (Rasterizer.OutputBitsAreIdenticalForSse2AndAvx2Kernels).
+// x86-64), AVX2 and AVX-512 (the rasterizer picks one at run time); each lane runs the formulas
+// of setup.h and interpolate.h in the same order, without FMA, so all give the same bits
+// (Rasterizer.OutputBitsAreIdenticalOnEveryKernelIsa).
 #pragma once
 
 #include <algorithm>
@@ -80,6 +80,10 @@ void renderTileSse2(const Input<float>&, const Outputs&, const TileJob&);
 void renderTileSse2(const Input<double>&, const Outputs&, const TileJob&);
 void renderTileAvx2(const Input<float>&, const Outputs&, const TileJob&);
 void renderTileAvx2(const Input<double>&, const Outputs&, const TileJob&);
+void renderTileAvx512(const Input<float>&, const Outputs&, const TileJob&);
+void renderTileAvx512(const Input<double>&, const Outputs&, const TileJob&);
+// The features the AVX-512 entry points are compiled for (tile_kernel.cpp's target attribute).
+bool cpuHasKernelAvx512();
 // Pixels covered by one set-up, for coveredPixels(); the kernels' own coverage code, SSE2.
 void coveredPixelsOf(const CoverageSetup<float>& s, int bits, std::vector<std::uint32_t>& pixels, int width);
 void coveredPixelsOf(const CoverageSetup<double>& s, int bits, std::vector<std::uint32_t>& pixels, int width);

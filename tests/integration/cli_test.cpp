@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include "core/exr_io.h"
+#include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
@@ -172,13 +173,15 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
   ASSERT_EQ(j["format_version"], 1);
   const auto& rows = j["rows"];
-  ASSERT_EQ(rows.size(), 9u);
+  // An AVX2 row joins where the default's kernels are AVX-512.
+  const bool avx512 = rc::resolveKernelIsa(rc::KernelIsa::kAuto) == rc::KernelIsa::kAvx512;
+  ASSERT_EQ(rows.size(), avx512 ? 10u : 9u);
   int defaults = 0;
-  double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3;
+  double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3, avx2 = -4;
   for (const auto& row : rows) {
     for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
                             "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
-                            "bary_p999_error", "disagreement_fraction", "reference_isa"}) {
+                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa"}) {
       ASSERT_TRUE(row.contains(key)) << key;
     }
     // Unpinned, the reference runs Embree's fastest mode on this CPU.
@@ -203,6 +206,16 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     if (row["setting"] == "perspective-double-8bit") dbl = row["bary_p999_error"];
     if (row["setting"] == "perspective-float-8bit-sse2") sse2 = row["bary_max_error"];
     if (row["setting"] == "perspective-float-8bit-nodiag") lean = row["bary_max_error"];
+    if (row["setting"] == "perspective-float-8bit-avx2") avx2 = row["bary_max_error"];
+    // Each row names the kernels it ran.
+    const std::string isa = row["raster_isa"];
+    if (row["setting"] == "perspective-float-8bit-sse2") {
+      EXPECT_EQ(isa, "sse2");
+    } else if (row["setting"] == "perspective-float-8bit-avx2") {
+      EXPECT_EQ(isa, "avx2");
+    } else {
+      EXPECT_EQ(isa, rc::kernelIsaName(rc::resolveKernelIsa(rc::KernelIsa::kAuto))) << row["setting"];
+    }
   }
   // The SSE2 kernels and the lean output write the default's bits: the same error.
   double perspectiveMax = -1;
@@ -211,6 +224,9 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   }
   EXPECT_EQ(sse2, perspectiveMax);
   EXPECT_EQ(lean, perspectiveMax);
+  if (avx512) {
+    EXPECT_EQ(avx2, perspectiveMax);
+  }
   EXPECT_EQ(defaults, 1);
   EXPECT_GT(affine, 100 * perspective) << "affine must show as far less accurate";
   EXPECT_LE(dbl, perspective);
@@ -219,9 +235,9 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   int lines = 0;
   while (std::getline(csv, line)) {
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 25) << "26 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 26) << "27 columns in every line: " << line;
   }
-  EXPECT_EQ(lines, 10);  // header + 9 settings
+  EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
   const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
   EXPECT_NE(svg.find("<svg"), std::string::npos);

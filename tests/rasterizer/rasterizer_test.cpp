@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <vector>
 
 #include "core/channels.h"
 #include "rasterizer/rasterizer.h"
@@ -112,10 +114,23 @@ TEST(Rasterizer, OutputBitsAreIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(testing::differingChannels(one, again), std::vector<std::string>{});
 }
 
-// The SSE2 and AVX2 kernels run the same IEEE operations lane by lane: the same bits, for
-// both precisions and modes, on scenes with clipping, attributes and slivers.
-TEST(Rasterizer, OutputBitsAreIdenticalForSse2AndAvx2Kernels) {
-  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+// The instruction sets this CPU can run beyond SSE2.
+std::vector<KernelIsa> widerKernelIsas() {
+  std::vector<KernelIsa> isas;
+  for (KernelIsa isa : {KernelIsa::kAvx2, KernelIsa::kAvx512}) {
+    try {
+      isas.push_back(resolveKernelIsa(isa));
+    } catch (const std::exception&) {  // this CPU lacks it
+    }
+  }
+  return isas;
+}
+
+// The SSE2, AVX2 and AVX-512 kernels run the same IEEE operations lane by lane: the same bits,
+// for both precisions and modes, on scenes with clipping, attributes and slivers.
+TEST(Rasterizer, OutputBitsAreIdenticalOnEveryKernelIsa) {
+  const std::vector<KernelIsa> wider = widerKernelIsas();
+  if (wider.empty()) GTEST_SKIP() << "this CPU has no AVX2";
   for (const char* spec : {"blob:tris=20000", "nearplane", "attributes", "slivers", "huge", "cube"}) {
     const Scene scene = makeBuiltinScene(spec);
     for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
@@ -123,29 +138,41 @@ TEST(Rasterizer, OutputBitsAreIdenticalForSse2AndAvx2Kernels) {
         RasterOptions o = options(precision);
         o.interpolation = mode;
         o.isa = KernelIsa::kSse2;
-        Framebuffer sse2 = rasterize(scene, o);
-        o.isa = KernelIsa::kAvx2;
-        Framebuffer avx2 = rasterize(scene, o);
-        // The header names the kernel; everything else must match.
+        const Framebuffer sse2 = rasterize(scene, o);
         EXPECT_EQ(sse2.attributes.at("rastercheck.kernelIsa"), "sse2");
-        EXPECT_EQ(avx2.attributes.at("rastercheck.kernelIsa"), "avx2");
-        EXPECT_EQ(testing::differingChannels(sse2, avx2), std::vector<std::string>{})
-            << spec << " " << precisionName(precision) << " " << interpolationName(mode);
+        for (KernelIsa isa : wider) {
+          o.isa = isa;
+          const Framebuffer other = rasterize(scene, o);
+          // The header names the kernel; everything else must match.
+          EXPECT_EQ(other.attributes.at("rastercheck.kernelIsa"), kernelIsaName(isa));
+          EXPECT_EQ(testing::differingChannels(sse2, other), std::vector<std::string>{})
+              << spec << " " << precisionName(precision) << " " << interpolationName(mode) << " "
+              << kernelIsaName(isa);
+        }
       }
     }
   }
 }
 
+// auto takes the widest level the CPU has.
+TEST(Rasterizer, AutoPicksTheWidestKernelIsa) {
+  const std::vector<KernelIsa> wider = widerKernelIsas();
+  EXPECT_EQ(resolveKernelIsa(KernelIsa::kAuto), wider.empty() ? KernelIsa::kSse2 : wider.back());
+  EXPECT_EQ(resolveKernelIsa(KernelIsa::kSse2), KernelIsa::kSse2);
+}
+
 // A row chunk of several winners is resolved either in one pass over its lanes, each lane
 // reading its winner's packed record, or winner by winner (tile_kernel.h); each lane must run
 // the same operations either way. Small triangles give most chunks several winners; nearplane
-// has clipped winners, attributes several attribute sets, and both SSE2 and AVX2 have the
+// has clipped winners, attributes several attribute sets, and every instruction set has the
 // gathered path.
 TEST(Rasterizer, GatheredResolveGivesTheSameBitsAsWinnerByWinner) {
   for (const char* spec : {"blob:tris=200000", "blob:tris=20000", "attributes", "nearplane", "subpixel", "slivers"}) {
     const Scene scene = makeBuiltinScene(spec);
     for (Interpolation mode : {Interpolation::kPerspective, Interpolation::kAffine}) {
-      for (KernelIsa isa : {KernelIsa::kSse2, KernelIsa::kAuto}) {
+      std::vector<KernelIsa> isas = widerKernelIsas();
+      isas.insert(isas.begin(), KernelIsa::kSse2);
+      for (KernelIsa isa : isas) {
         for (bool diagnostics : {true, false}) {
           RasterOptions o = options(Precision::kFloat);
           o.interpolation = mode;
