@@ -47,18 +47,23 @@ namespace {
 
 // Returns the mesh triangle of each Embree triangle (empty: the same index).
 std::vector<std::uint32_t> buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh,
-                                         const Camera& camera) {
-  EmbreeTriangles triangles = embreeTriangles(mesh, camera);
+                                         const Camera& camera, int threads) {
+  EmbreeTriangles triangles = embreeTriangles(mesh, camera, threads);
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   device.check("rtcNewGeometry");
-  const std::size_t vertexCount = triangles.vertices.size() / 3, triangleCount = triangles.indices.size() / 3;
+  static_assert(sizeof(glm::uvec3) == 3 * sizeof(unsigned));
+  const bool ownTriangles = triangles.indices.empty();
+  const unsigned* from =
+      ownTriangles ? reinterpret_cast<const unsigned*>(mesh.triangles.data()) : triangles.indices.data();
+  const std::size_t vertexCount = triangles.vertices.size() / 3;
+  const std::size_t triangleCount = ownTriangles ? mesh.triangleCount() : triangles.indices.size() / 3;
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangleCount));
   device.check("rtcSetNewGeometryBuffer");
   std::copy(triangles.vertices.begin(), triangles.vertices.end(), vertices);
-  std::copy(triangles.indices.begin(), triangles.indices.end(), indices);
+  std::copy(from, from + 3 * triangleCount, indices);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene.get(), geometry);
   rtcReleaseGeometry(geometry);
@@ -92,7 +97,7 @@ struct ReferenceTracer::Impl {
       : scene(s), options(o), threads(resolveThreadCount(o.threads)),
         device("isa=" + o.isa + ",threads=" + std::to_string(threads) + ",verbose=0"),
         embreeScene(device, RTC_SCENE_FLAG_ROBUST) {
-    source = buildGeometry(device, embreeScene, scene.mesh, scene.camera);
+    source = buildGeometry(device, embreeScene, scene.mesh, scene.camera, threads);
   }
 };
 

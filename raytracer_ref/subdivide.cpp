@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include "core/parallel.h"
 
 namespace rc {
 
@@ -87,35 +90,62 @@ struct Splitter {
   }
 };
 
+constexpr std::size_t kBlock = 16384;  // vertices or triangles per parallel work item
+
+int blocksOf(std::size_t count) { return int((count + kBlock - 1) / kBlock); }
+
 }  // namespace
 
-EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera) {
+EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera, int threads) {
   const glm::dvec3 eye = camera.spec().eye;
+  const auto relativeTo = [&](const glm::uvec3& tri, glm::dvec3 p[3]) {
+    for (int i = 0; i < 3; ++i) p[i] = glm::dvec3(mesh.positions[tri[i]]) - eye;  // rounded once, below
+  };
   EmbreeTriangles out;
-  out.vertices.reserve(3 * mesh.vertexCount());
-  for (const glm::vec3& p : mesh.positions) {
-    const glm::dvec3 relative = glm::dvec3(p) - eye;  // rounded once, below
-    for (int k = 0; k < 3; ++k) out.vertices.push_back(float(relative[k]));
+  const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
+  out.vertices.resize(3 * vertexCount);
+  parallelFor(blocksOf(vertexCount), threads, [&](int b) {
+    const std::size_t end = std::min(vertexCount, (std::size_t(b) + 1) * kBlock);
+    for (std::size_t v = std::size_t(b) * kBlock; v < end; ++v) {
+      const glm::dvec3 relative = glm::dvec3(mesh.positions[v]) - eye;
+      for (int k = 0; k < 3; ++k) out.vertices[3 * v + std::size_t(k)] = float(relative[k]);
+    }
+  });
+  // Which triangles Embree can take as they are: the test is most of the work, and each
+  // triangle's answer is its own, so it runs in parallel; the rare splitting stays serial.
+  std::vector<std::uint8_t> fits(triangleCount);
+  std::vector<std::uint8_t> blockFits(std::size_t(blocksOf(triangleCount)));
+  parallelFor(blocksOf(triangleCount), threads, [&](int b) {
+    const std::size_t end = std::min(triangleCount, (std::size_t(b) + 1) * kBlock);
+    bool all = true;
+    for (std::size_t t = std::size_t(b) * kBlock; t < end; ++t) {
+      glm::dvec3 p[3];
+      relativeTo(mesh.triangles[t], p);
+      const double longest =
+          std::max({glm::length(p[1] - p[2]), glm::length(p[2] - p[0]), glm::length(p[0] - p[1])});
+      fits[t] = longest <= kMaxLengthOverDistance * distanceToTriangle(p[0], p[1], p[2]);
+      all = all && fits[t];
+    }
+    blockFits[std::size_t(b)] = all;
+  });
+  if (std::all_of(blockFits.begin(), blockFits.end(), [](std::uint8_t all) { return all != 0; })) {
+    return out;  // the mesh's own triangles, identity source
   }
   Splitter splitter{camera.forward(), camera.right(), camera.up(), camera.zNear(),
                     camera.tanHalfFovY() * camera.aspect(), camera.tanHalfFovY(), out};
-  out.indices.reserve(3 * mesh.triangleCount());
-  out.source.reserve(mesh.triangleCount());
-  bool split = false;
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+  out.indices.reserve(3 * triangleCount);
+  out.source.reserve(triangleCount);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
     const glm::uvec3 tri = mesh.triangles[t];
-    const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[tri.x]) - eye, glm::dvec3(mesh.positions[tri.y]) - eye,
-                             glm::dvec3(mesh.positions[tri.z]) - eye};
-    const double longest = std::max({glm::length(p[1] - p[2]), glm::length(p[2] - p[0]), glm::length(p[0] - p[1])});
-    if (longest <= kMaxLengthOverDistance * distanceToTriangle(p[0], p[1], p[2])) {
+    if (fits[t]) {
       for (int k = 0; k < 3; ++k) out.indices.push_back(tri[k]);
       out.source.push_back(std::uint32_t(t));
       continue;
     }
-    split = true;
+    glm::dvec3 p[3];
+    relativeTo(tri, p);
     splitter.split(p, std::uint32_t(t), 0);
   }
-  if (!split) out.source.clear();  // identity
   return out;
 }
 

@@ -22,12 +22,15 @@ namespace rc {
 inline constexpr double kMaxLengthOverDistance = 16.0;
 
 struct EmbreeTriangles {
-  std::vector<float> vertices;        // 3 floats per vertex, camera-relative
-  std::vector<unsigned> indices;      // 3 per triangle
+  // 3 floats per vertex, camera-relative: the mesh's vertices, then those splitting made.
+  std::vector<float> vertices;
+  // 3 per triangle; empty when no triangle was split: the mesh's own triangles are Embree's.
+  std::vector<unsigned> indices;
   std::vector<std::uint32_t> source;  // per Embree triangle: the mesh triangle; empty = identity
 };
 
-EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera);
+// On up to `threads` threads; the result does not depend on their number.
+EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera, int threads);
 
 // Distance from the origin to triangle (a, b, c), in double.
 double distanceToTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);

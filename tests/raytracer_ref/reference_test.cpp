@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include "core/channels.h"
 #include "raytracer_ref/ray_triangle.h"
 #include "raytracer_ref/reference.h"
+#include "raytracer_ref/subdivide.h"
 #include "scenes/registry.h"
 #include "tests/analytic.h"
 #include "tests/same_bits.h"
@@ -95,6 +97,36 @@ TEST(Reference, OutputBitsAreIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(testing::differingChannels(one, other), std::vector<std::string>{});
 }
 
+std::uint32_t bitsOf(float v) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  return bits;
+}
+
+// What Embree gets is the same on any number of threads: the mesh's own triangles where none
+// needs splitting (blob), and the same pieces in the same order where some do (huge's
+// triangles reach far past the eye; perspective's from near to far).
+TEST(Reference, EmbreeTrianglesAreTheSameOnAnyNumberOfThreads) {
+  for (const char* spec : {"blob:tris=100000", "huge", "perspective"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    const EmbreeTriangles one = embreeTriangles(scene.mesh, scene.camera, 1);
+    const bool split = std::string(spec) != "blob:tris=100000";
+    EXPECT_EQ(one.source.empty(), !split) << spec;
+    EXPECT_EQ(one.indices.empty(), !split) << spec;
+    EXPECT_EQ(one.indices.size(), 3 * one.source.size()) << spec;
+    EXPECT_GE(one.vertices.size(), 3 * scene.mesh.vertexCount()) << spec;
+    for (int threads : {2, 3, 8}) {
+      const EmbreeTriangles other = embreeTriangles(scene.mesh, scene.camera, threads);
+      EXPECT_EQ(other.vertices.size(), one.vertices.size()) << spec << " " << threads;
+      EXPECT_TRUE(std::equal(one.vertices.begin(), one.vertices.end(), other.vertices.begin(), other.vertices.end(),
+                             [](float a, float b) { return bitsOf(a) == bitsOf(b); }))
+          << spec << " " << threads;
+      EXPECT_EQ(other.indices, one.indices) << spec << " " << threads;
+      EXPECT_EQ(other.source, one.source) << spec << " " << threads;
+    }
+  }
+}
+
 // The image at another size: odd ones leave partial 4x4 blocks at the right and bottom.
 Scene resized(Scene scene, int width, int height) {
   CameraSpec spec = scene.camera.spec();
@@ -102,12 +134,6 @@ Scene resized(Scene scene, int width, int height) {
   spec.height = height;
   scene.camera = Camera(spec);
   return scene;
-}
-
-std::uint32_t bitsOf(float v) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  return bits;
 }
 
 // The band tracer recomputes four pixels at a time, sharing one triangle's frame between
