@@ -1,7 +1,7 @@
 // The tile kernels compiled three times from one source: for the x86-64 baseline (SSE2), with
-// the AVX2 target attribute and with AVX-512 added to it (per-function target, no -march flag, so the rest of
-// the program runs on any x86-64). The build's -ffp-contract=off keeps every multiply and add
-// separate (none of them is fused into an FMA), so all three produce the same bits.
+// the AVX2 target attribute, and with AVX-512 added to it (per-function targets, no -march
+// flag, so the rest of the program runs on any x86-64). The build's -ffp-contract=off keeps
+// every multiply and add separate (none is fused into an FMA), so all three give the same bits.
 #include "rasterizer/tile_kernel.h"
 
 #include <immintrin.h>

@@ -99,7 +99,7 @@ int blocksOf(std::size_t count) { return int((count + kBlock - 1) / kBlock); }
 EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera, int threads) {
   const glm::dvec3 eye = camera.spec().eye;
   const auto relativeTo = [&](const glm::uvec3& tri, glm::dvec3 p[3]) {
-    for (int i = 0; i < 3; ++i) p[i] = glm::dvec3(mesh.positions[tri[i]]) - eye;  // rounded once, below
+    for (int i = 0; i < 3; ++i) p[i] = glm::dvec3(mesh.positions[tri[i]]) - eye;  // in double
   };
   EmbreeTriangles out;
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
@@ -107,7 +107,7 @@ EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera, int thre
   parallelFor(blocksOf(vertexCount), threads, [&](int b) {
     const std::size_t end = std::min(vertexCount, (std::size_t(b) + 1) * kBlock);
     for (std::size_t v = std::size_t(b) * kBlock; v < end; ++v) {
-      const glm::dvec3 relative = glm::dvec3(mesh.positions[v]) - eye;
+      const glm::dvec3 relative = glm::dvec3(mesh.positions[v]) - eye;  // rounded once, below
       for (int k = 0; k < 3; ++k) out.vertices[3 * v + std::size_t(k)] = float(relative[k]);
     }
   });
