@@ -195,6 +195,7 @@ struct Pipeline {
   const Scene& scene;
   const RasterOptions& options;
   Frame<Real>& frame;
+  KernelIsa isa;  // options.isa as resolved on this CPU, once per frame
   int width, height, tilesX, tilesY;
   std::size_t blockSize;
   ClipVolume<double> volume;
@@ -204,7 +205,8 @@ struct Pipeline {
                          CoverageSetup<Real>*);
 
   Pipeline(const Scene& s, const RasterOptions& o, Frame<Real>& workspace)
-      : scene(s), options(o), frame(workspace), width(s.camera.width()), height(s.camera.height()) {
+      : scene(s), options(o), frame(workspace), isa(resolveKernelIsa(o.isa)), width(s.camera.width()),
+        height(s.camera.height()) {
     // Guard band: 2^(28 - bits) pixels from the viewport centre, so that snapped positions
     // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it.
     const double guardPixels = std::ldexp(1.0, 28 - o.subpixelBits);
@@ -231,7 +233,7 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
-    if (resolveKernelIsa(o.isa) != KernelIsa::kSse2) {  // AVX-512 adds nothing the set-up uses
+    if (isa != KernelIsa::kSse2) {  // AVX-512 adds nothing the set-up uses
       batchSetup = batch::setupCoverageAvx2;
     } else {
       batchSetup = batch::setupCoverageSse2;
@@ -258,7 +260,7 @@ struct Pipeline {
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
     frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
-    const auto transformRange = resolveKernelIsa(options.isa) != KernelIsa::kSse2 ? transformAvx2 : transformScalar;
+    const auto transformRange = isa != KernelIsa::kSse2 ? transformAvx2 : transformScalar;
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
@@ -490,7 +492,7 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   // depthTieAt's 5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB, evaluated in Real: its own
   // handful of roundings (under 8 u relative) is covered by the factor 1 + 2^-16.
   in.tieScale = Real(5.0 * p.context.unitRoundoff / p.context.keyB * (1.0 + 0x1p-16));
-  const KernelIsa isa = resolveKernelIsa(options.isa);
+  const KernelIsa isa = p.isa;
   parallelFor(p.tileCount(), options.threads, [&](int tile) {
     const int tx = tile % p.tilesX, ty = tile / p.tilesX;
     kernel::TileJob job{frame.binned.data() + frame.binStart[tile], frame.binStart[tile + 1] - frame.binStart[tile],
