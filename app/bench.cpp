@@ -143,6 +143,9 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
         }
       }
       const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr);
+      // Last, since it overwrites the frame's planes.
+      std::vector<double> floor;
+      for (int r = 0; r < runs; ++r) floor.push_back(writeOutPass(raster, std::uint32_t(r), setting.raster));
       BenchRow row;
       row.scene = scene.name;
       row.setting = setting.name;
@@ -160,6 +163,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.binMs = median(bin);
       row.tilesMs = median(tiles);
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
+      row.storeFloorMs = median(floor);
       row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
       row.referenceIsa = settings.reference.isa;
       row.referenceBuildMs = median(build);
@@ -183,6 +187,7 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
     nlohmann::json row = {{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
                           {"threads", r.threads}, {"setting", r.setting}, {"default", r.isDefault}, {"runs", r.runs},
                           {"raster_ms", r.rasterMs}, {"raster_ms_min", r.rasterMsMin}, {"raster_ms_max", r.rasterMsMax},
+                          {"store_floor_ms", r.storeFloorMs},
                           {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
                                         {"tiles", r.tilesMs}}},
                           {"raster_isa", r.rasterIsa}, {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
@@ -223,6 +228,7 @@ std::vector<BenchRow> readBenchJson(const std::string& path) {
       r.height = j.at("height").get<int>();
       r.threads = j.at("threads").get<int>();
       r.rasterMs = j.at("raster_ms").get<double>();
+      r.storeFloorMs = j.value("store_floor_ms", 0.0);
       r.rasterIsa = j.value("raster_isa", std::string());
       r.referenceIsa = j.value("reference_isa", std::string());
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
@@ -248,19 +254,19 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
-         "reference_isa,raster_isa\n";
+         "reference_isa,raster_isa,store_floor_ms\n";
   char line[768];
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
                   "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
-                  r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str());
+                  r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs);
     out << line;
   }
   return out.str();

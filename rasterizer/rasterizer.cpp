@@ -27,6 +27,7 @@
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "core/preview.h"
+#include "core/stream_row.h"
 #include "rasterizer/clip.h"
 #include "rasterizer/setup.h"
 #include "rasterizer/setup_batch.h"
@@ -573,6 +574,37 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixels(const Scene& 
   checkSubpixelBits(options);
   return options.precision == Precision::kFloat ? coveredPixelsAs<float>(scene, options)
                                                 : coveredPixelsAs<double>(scene, options);
+}
+
+double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& options) {
+  const KernelIsa isa = resolveKernelIsa(options.isa);
+  std::vector<std::uint32_t*> planes;
+  for (const Channel& c : fb.channels()) {
+    Channel& own = *fb.find(c.name);
+    planes.push_back(own.type == ChannelType::kFloat ? reinterpret_cast<std::uint32_t*>(own.floats.data())
+                                                     : own.uints.data());
+  }
+  const int width = fb.width(), height = fb.height();
+  const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+  const auto start = std::chrono::steady_clock::now();
+  parallelFor(tilesX * tilesY, options.threads, [&](int tile) {
+    const int x0 = tile % tilesX * kTileSize, y0 = tile / tilesX * kTileSize;
+    const int n = std::min(width, x0 + kTileSize) - x0;
+    alignas(64) std::uint32_t stage[kTileSize];
+    std::fill(stage, stage + kTileSize, value);
+    for (int y = y0; y < std::min(height, y0 + kTileSize); ++y) {
+      const std::size_t rowStart = std::size_t(y) * std::size_t(width) + std::size_t(x0);
+      for (std::uint32_t* plane : planes) {
+        if (isa == KernelIsa::kSse2) {
+          streamRow(plane + rowStart, stage, n);
+        } else {
+          kernel::streamRowAvx2(plane + rowStart, stage, n);
+        }
+      }
+    }
+    _mm_sfence();
+  });
+  return millisecondsSince(start);
 }
 
 Framebuffer rasterize(const Scene& scene, const RasterOptions& options) {

@@ -91,6 +91,14 @@ class Rasterizer {
   StageTimes times_;
 };
 
+// The write-out floor: what writing a frame's planes costs with nothing else to do. Sets every
+// value of every channel of `fb` to `value` the way the tile kernels write their output: 64x64
+// tiles in parallel on options.threads, each tile row copied plane by plane from a staging row
+// in L1 with the non-temporal stores of options.isa's kernels. No transform, set-up, coverage
+// or resolve, so a frame that writes these planes cannot take less time (bench's
+// store_floor_ms). Returns the pass's wall-clock time in milliseconds.
+double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& options);
+
 // One frame with a fresh Rasterizer, plus the RGB preview.
 Framebuffer rasterize(const Scene& scene, const RasterOptions& options);
 

@@ -181,7 +181,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   for (const auto& row : rows) {
     for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
                             "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
-                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa"}) {
+                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa", "store_floor_ms"}) {
       ASSERT_TRUE(row.contains(key)) << key;
     }
     // Unpinned, the reference runs Embree's fastest mode on this CPU.
@@ -195,6 +195,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
       EXPECT_GT(ms, 0.0) << stage;
       EXPECT_LE(ms, row["raster_ms_max"].get<double>()) << stage;
     }
+    EXPECT_GT(row["store_floor_ms"].get<double>(), 0.0);
     // EXR writing is timed apart, for the default setting only.
     EXPECT_EQ(row.contains("exr_write_ms"), row["default"].get<bool>()) << row["setting"];
     if (row.contains("exr_write_ms")) {
@@ -235,7 +236,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   int lines = 0;
   while (std::getline(csv, line)) {
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 26) << "27 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 27) << "28 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");

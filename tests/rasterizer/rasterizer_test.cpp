@@ -161,6 +161,44 @@ TEST(Rasterizer, AutoPicksTheWidestKernelIsa) {
   EXPECT_EQ(resolveKernelIsa(KernelIsa::kSse2), KernelIsa::kSse2);
 }
 
+// bench's write-out floor writes what a frame writes: every value of every channel, the uint
+// id plane and the float planes alike, in the partial tiles of an image that is no multiple of
+// 64 wide or high (rows whose starts are not 32-byte aligned take the narrower stores), on any
+// number of threads and with every instruction set's stores.
+TEST(Rasterizer, WriteOutPassWritesEveryValueOfEveryChannel) {
+  Scene scene = makeBuiltinScene("attributes");
+  CameraSpec spec = scene.camera.spec();
+  spec.width = 133, spec.height = 70;
+  scene.camera = Camera(spec);
+  std::vector<KernelIsa> isas = widerKernelIsas();
+  isas.insert(isas.begin(), KernelIsa::kSse2);
+  for (KernelIsa isa : isas) {
+    for (int threads : {1, 3}) {
+      RasterOptions o = options(Precision::kFloat, threads);
+      o.isa = isa;
+      Framebuffer fb;
+      Rasterizer(o).render(scene, fb);
+      ASSERT_GT(fb.channels().size(), 9u) << "diagnostics and attributes included";
+      const std::uint32_t value = 0x3F8CCCCDu + std::uint32_t(threads);
+      const double ms = writeOutPass(fb, value, o);
+      EXPECT_GT(ms, 0.0);
+      for (const Channel& c : fb.channels()) {
+        std::size_t wrong = 0;
+        for (std::size_t i = 0; i < fb.pixelCount(); ++i) {
+          std::uint32_t bits;
+          if (c.type == ChannelType::kFloat) {
+            std::memcpy(&bits, &c.floats[i], sizeof bits);
+          } else {
+            bits = c.uints[i];
+          }
+          wrong += bits != value;
+        }
+        EXPECT_EQ(wrong, 0u) << c.name << ", " << kernelIsaName(isa) << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
 // A row chunk of several winners is resolved either in one pass over its lanes, each lane
 // reading its winner's packed record, or winner by winner (tile_kernel.h); each lane must run
 // the same operations either way. Small triangles give most chunks several winners; nearplane
