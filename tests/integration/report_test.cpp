@@ -74,6 +74,9 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   }
   EXPECT_EQ(images, 7);  // raster, reference and heatmap per scene, and the bench chart
   EXPECT_NE(html.find("Speed against error"), std::string::npos);
+  // The bench rows carry their memory floor, read back from the JSON (older reports show "-").
+  EXPECT_NE(html.find("<th>floor ms</th>"), std::string::npos);
+  EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
 }
 
 TEST(HtmlReport, LoadsInChromiumWithoutConsoleErrorsAndShowsItsImages) {
