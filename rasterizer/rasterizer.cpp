@@ -27,7 +27,6 @@
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "core/preview.h"
-#include "core/stream_row.h"
 #include "rasterizer/clip.h"
 #include "rasterizer/setup.h"
 #include "rasterizer/setup_batch.h"
@@ -594,12 +593,11 @@ double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& o
     std::fill(stage, stage + kTileSize, value);
     for (int y = y0; y < std::min(height, y0 + kTileSize); ++y) {
       const std::size_t rowStart = std::size_t(y) * std::size_t(width) + std::size_t(x0);
-      for (std::uint32_t* plane : planes) {
-        if (isa == KernelIsa::kSse2) {
-          streamRow(plane + rowStart, stage, n);
-        } else {
-          kernel::streamRowAvx2(plane + rowStart, stage, n);
-        }
+      const int count = int(planes.size());
+      if (isa == KernelIsa::kSse2) {
+        kernel::streamStagedRowSse2(planes.data(), count, stage, 0, rowStart, n);
+      } else {
+        kernel::streamStagedRowAvx2(planes.data(), count, stage, 0, rowStart, n);
       }
     }
     _mm_sfence();

@@ -41,15 +41,14 @@ bool cpuHasKernelAvx512() {
          __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
 }
 
-__attribute__((target("avx2"))) void streamRowAvx2(std::uint32_t* to, const std::uint32_t* from, int n) {
-  int k = 0;
-  if ((reinterpret_cast<std::uintptr_t>(to) & 31u) == 0) {
-    for (; k + 8 <= n; k += 8) {
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(to + k),
-                          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(from + k)));
-    }
-  }
-  streamRow(to + k, from + k, n - k);
+void streamStagedRowSse2(std::uint32_t* const* planes, int count, const std::uint32_t* stage, std::size_t stride,
+                         std::size_t rowStart, int n) {
+  streamStagedRow<false>(planes, count, stage, stride, rowStart, n);
+}
+__attribute__((target("avx2"))) void streamStagedRowAvx2(std::uint32_t* const* planes, int count,
+                                                         const std::uint32_t* stage, std::size_t stride,
+                                                         std::size_t rowStart, int n) {
+  streamStagedRow<true>(planes, count, stage, stride, rowStart, n);
 }
 
 namespace {

@@ -221,7 +221,7 @@ struct Tracer {
         for (int x0 = strip; x0 < stripEnd; x0 += kBlock) traceBlock(rh, context, rows, x0, up, strip);
         for (std::size_t plane = 0; plane < in.planes.size(); ++plane) {
           for (int r = 0; r < rows; ++r) {
-            streamRow(in.planes[plane] + std::size_t(yb + r) * width + strip,
+            streamRowOf<kAvx2>(in.planes[plane] + std::size_t(yb + r) * width + strip,
                       stage.data() + plane * kStagePlane + r * kStrip, stripEnd - strip);
           }
         }
