@@ -709,11 +709,22 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   for (const Outputs::Attribute& a : out.attributes) {
     for (int j = 0; j < a.components; ++j) planes.push_back(reinterpret_cast<std::uint32_t*>(a.out[j]));
   }
+  // Bit c set: chunk column c of the staging rows holds what a chunk without a winner writes
+  // (no triangle, zeros), so a chunk without a winner below it writes nothing again.
+  unsigned stagedEmpty = 0;
   for (int y = job.y0; y <= job.y1; ++y) {
     for (int x = job.x0; x <= job.x1; x += kLanes) {
       const int lanes = std::min(kLanes, job.x1 - x + 1);
       const u32x8 w = load<u32x8>(winner + (y - job.y0) * kTileSize + (x - job.x0));
       const i32x8 valid = (iota32() < lanes) & (w != kEmpty);
+      const unsigned column = 1u << ((x - job.x0) / kLanes);
+      if (anyOf<kAvx2>(valid)) {
+        stagedEmpty &= ~column;
+      } else if (stagedEmpty & column) {
+        continue;
+      } else {
+        stagedEmpty |= column;
+      }
       Resolved r{};
       std::uint32_t* at = stage.data() + (x - job.x0);
       float* attributesAt = reinterpret_cast<float*>(at + kFixedPlanes * kStride);
