@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <unistd.h>
@@ -118,23 +119,44 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       tracer.trace(reference);
       trace.push_back(millisecondsSince(t0));
     }
-    for (const BenchSetting& setting : benchSettings(settings.raster)) {
-      step(scene.name + ": " + setting.name);
-      std::vector<double> times, transform, setup, bin, tiles, exr;
-      Rasterizer rasterizer(setting.raster);
+    // The settings' frames are timed in rounds: each round gives every setting one untimed
+    // frame (its caches warm again after the others) and one timed frame. A slow spell of the
+    // machine (seconds long on a shared one) then falls on all settings alike instead of on
+    // all the runs of whichever setting it met, and the medians and ratios stay put.
+    struct Live {
+      const BenchSetting* setting;
+      std::unique_ptr<Rasterizer> rasterizer;
       Framebuffer raster;
-      rasterizer.render(scene, raster);
-      for (int r = 0; r < runs; ++r) {
+      std::vector<double> times, transform, setup, bin, tiles;
+    };
+    const std::vector<BenchSetting> sweep = benchSettings(settings.raster);
+    std::vector<Live> live(sweep.size());
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+      live[i].setting = &sweep[i];
+      live[i].rasterizer = std::make_unique<Rasterizer>(sweep[i].raster);
+      live[i].rasterizer->render(scene, live[i].raster);  // faults the memory in
+    }
+    for (int r = 0; r < runs; ++r) {
+      step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
+      for (Live& l : live) {
+        l.rasterizer->render(scene, l.raster);
         const long long t0 = nowNanoseconds();
-        rasterizer.render(scene, raster);
-        times.push_back(millisecondsSince(t0));
-        const StageTimes& stages = rasterizer.stageTimes();
-        transform.push_back(stages.transformMs);
-        setup.push_back(stages.setupMs);
-        bin.push_back(stages.binMs);
-        tiles.push_back(stages.tilesMs);
+        l.rasterizer->render(scene, l.raster);
+        l.times.push_back(millisecondsSince(t0));
+        const StageTimes& stages = l.rasterizer->stageTimes();
+        l.transform.push_back(stages.transformMs);
+        l.setup.push_back(stages.setupMs);
+        l.bin.push_back(stages.binMs);
+        l.tiles.push_back(stages.tilesMs);
       }
-      if (setting.isDefault) {  // after the timed frames, so they run as they would without it
+    }
+    step(scene.name + ": errors, EXR writing and memory floors");
+    for (Live& l : live) {
+      const BenchSetting& setting = *l.setting;
+      Framebuffer& raster = l.raster;
+      const std::vector<double>& times = l.times;
+      std::vector<double> exr;
+      if (setting.isDefault) {  // after every timed frame, so they run as they would without it
         const TemporaryFile file;
         for (int r = 0; r < std::min(runs, kExrRuns); ++r) {
           const long long t0 = nowNanoseconds();
@@ -158,10 +180,10 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.rasterMs = median(times);
       row.rasterMsMin = *std::min_element(times.begin(), times.end());
       row.rasterMsMax = *std::max_element(times.begin(), times.end());
-      row.transformMs = median(transform);
-      row.setupMs = median(setup);
-      row.binMs = median(bin);
-      row.tilesMs = median(tiles);
+      row.transformMs = median(l.transform);
+      row.setupMs = median(l.setup);
+      row.binMs = median(l.bin);
+      row.tilesMs = median(l.tiles);
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
       row.storeFloorMs = median(floor);
       row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));

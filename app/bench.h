@@ -36,7 +36,7 @@ struct BenchRow {
   // temporary file), measured for the default setting only; negative for the others.
   double exrWriteMs = -1;
   // Median time of writeOutPass over the setting's output planes (rasterizer.h): writing them
-  // alone with the kernels' stores, on the setting's threads, right after its frames. The
+  // alone with the kernels' stores, on the setting's threads, after the timed frames. The
   // floor that memory bandwidth sets under rasterMs; 0 where not measured (older reports).
   double storeFloorMs = 0;
   std::string rasterIsa;          // the rasterizer's kernels as this setting resolved on this CPU

@@ -265,6 +265,18 @@ TEST(Cli, BenchTracesWithThePinnedEmbreeIsa) {
       << unpinned.output;
 }
 
+// bench times the settings in rounds, every setting once per round, and says so as it goes:
+// progress counts the reference, each round and the errors, and reaches its total.
+TEST(Cli, BenchTimesTheSettingsRoundByRound) {
+  const CliRun r = run("bench cube --runs 3");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* step : {"[1/5] cube: reference build and trace", "[2/5] cube: round 1 of 3",
+                           "[4/5] cube: round 3 of 3", "[5/5] cube: errors"}) {
+    EXPECT_NE(r.output.find(step), std::string::npos) << step << "\n" << r.output;
+  }
+  EXPECT_NE(r.output.find("the settings timed in turn"), std::string::npos) << r.output;
+}
+
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   const rc::testing::TempDir temp;  // removed at the end of the test
   const fs::path& dir = temp.path();
