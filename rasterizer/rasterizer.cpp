@@ -583,7 +583,7 @@ double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& o
     planes.push_back(own.type == ChannelType::kFloat ? reinterpret_cast<std::uint32_t*>(own.floats.data())
                                                      : own.uints.data());
   }
-  const int width = fb.width(), height = fb.height();
+  const int count = int(planes.size()), width = fb.width(), height = fb.height();
   const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
   const auto start = std::chrono::steady_clock::now();
   parallelFor(tilesX * tilesY, options.threads, [&](int tile) {
@@ -593,7 +593,6 @@ double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& o
     std::fill(stage, stage + kTileSize, value);
     for (int y = y0; y < std::min(height, y0 + kTileSize); ++y) {
       const std::size_t rowStart = std::size_t(y) * std::size_t(width) + std::size_t(x0);
-      const int count = int(planes.size());
       if (isa == KernelIsa::kSse2) {
         kernel::streamStagedRowSse2(planes.data(), count, stage, 0, rowStart, n);
       } else {

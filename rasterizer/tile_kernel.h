@@ -523,8 +523,8 @@ RC_KERNEL_INLINE void gatherGroup(const float* const record[kLanes], int g, f32x
   transpose8(field);
 }
 
-// Chunks of up to this many winners are resolved winner by winner: the transposes cost more
-// than two passes (docs/rasterizer.md, "Gathered resolve").
+// Chunks of up to this many runs of one winner are resolved winner by winner: the transposes
+// cost more than two passes (docs/rasterizer.md, "Gathered resolve").
 constexpr int kGatherAbove = 2;
 // Whether the chunk's winner changes from lane to lane at least n times, that is, whether it
 // has more than n runs of lanes with one winner (or none). A triangle's pixels in a row chunk
