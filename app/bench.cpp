@@ -123,25 +123,30 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     // frame (its caches warm again after the others) and one timed frame. A slow spell of the
     // machine (seconds long on a shared one) then falls on all settings alike instead of on
     // all the runs of whichever setting it met, and the medians and ratios stay put.
+    // The settings that write the same channels draw into one framebuffer in turn (every
+    // frame writes every pixel of every plane): two framebuffers per scene, not one per setting
+    // (a bench of the default scenes peaked at 2.24 GB with one each, 1.0 GB with two).
     struct Live {
       const BenchSetting* setting;
       std::unique_ptr<Rasterizer> rasterizer;
-      Framebuffer raster;
+      Framebuffer* raster;
       std::vector<double> times, transform, setup, bin, tiles;
     };
     const std::vector<BenchSetting> sweep = benchSettings(settings.raster);
     std::vector<Live> live(sweep.size());
+    Framebuffer withDiagnostics, withoutDiagnostics;
     for (std::size_t i = 0; i < sweep.size(); ++i) {
       live[i].setting = &sweep[i];
       live[i].rasterizer = std::make_unique<Rasterizer>(sweep[i].raster);
-      live[i].rasterizer->render(scene, live[i].raster);  // faults the memory in
+      live[i].raster = sweep[i].raster.diagnostics ? &withDiagnostics : &withoutDiagnostics;
+      live[i].rasterizer->render(scene, *live[i].raster);  // faults the memory in
     }
     for (int r = 0; r < runs; ++r) {
       step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
       for (Live& l : live) {
-        l.rasterizer->render(scene, l.raster);
+        l.rasterizer->render(scene, *l.raster);
         const long long t0 = nowNanoseconds();
-        l.rasterizer->render(scene, l.raster);
+        l.rasterizer->render(scene, *l.raster);
         l.times.push_back(millisecondsSince(t0));
         const StageTimes& stages = l.rasterizer->stageTimes();
         l.transform.push_back(stages.transformMs);
@@ -153,7 +158,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     step(scene.name + ": errors, EXR writing and memory floors");
     for (Live& l : live) {
       const BenchSetting& setting = *l.setting;
-      Framebuffer& raster = l.raster;
+      Framebuffer& raster = *l.raster;
+      l.rasterizer->render(scene, raster);  // its own frame again: the other settings drew over it
       const std::vector<double>& times = l.times;
       std::vector<double> exr;
       if (setting.isDefault) {  // after every timed frame, so they run as they would without it
