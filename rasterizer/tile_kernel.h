@@ -261,18 +261,14 @@ RC_KERNEL_INLINE void vertexValuesOf(const Outputs::Attribute& a, const glm::uve
 
 // shadeSetupOf for the set-ups at bins[winners[0..count)]: whole triangles four at a time
 // through the batch set-up (setup_batch.h, the same bits), clipped sub-triangles one by one.
-// Their records, the mesh's triangles and the vertices are scattered through memory: each is
-// prefetched a few set-ups ahead of its use, the record first, then the triangle it names,
-// then that triangle's vertices, and with them the vertices' attributes for resolve, which
-// runs after the tile's last set-up (BM_Frame at 1M, 2 threads: tiles about 1 ms less).
+// Nothing is prefetched: the records are still in cache from the coverage pass, and
+// prefetching each winner's triangle, vertices and attributes a few winners ahead, which once
+// took a millisecond off the tiles at 1M triangles, measured slower since (in one process,
+// rounds alternating, 1M: 1 thread 32.2 against 31.2 ms of tiles, 2 threads 17.9 against 17.7;
+// 100k the same).
 template <bool kAvx2, typename Real>
-inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::uint32_t* bins,
-                          const std::uint32_t* winners, std::size_t count, ShadeSetup<Real>* shades) {
-  constexpr std::size_t kRecordsAhead = 8, kTrianglesAhead = 4, kVerticesAhead = 2;
-  const auto source = [&](std::size_t i) -> const SetupSource& {
-    const std::uint32_t name = bins[winners[i]];
-    return in.coverage[name >> kBlockShift][name & kLocalMask].source;
-  };
+inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, const std::uint32_t* winners,
+                          std::size_t count, ShadeSetup<Real>* shades) {
   glm::uvec3 tris[batch::kLanes];
   const CoverageSetup<Real>* coverage[batch::kLanes];
   ShadeSetup<Real>* into[batch::kLanes];
@@ -288,29 +284,6 @@ inline void shadeSetupsOf(const Input<Real>& in, const Outputs& out, const std::
     pending = 0;
   };
   for (std::size_t i = 0; i < count; ++i) {
-    if (i + kRecordsAhead < count) {
-      const std::uint32_t name = bins[winners[i + kRecordsAhead]];
-      __builtin_prefetch(&in.coverage[name >> kBlockShift][name & kLocalMask]);
-    }
-    if (i + kTrianglesAhead < count) {
-      const SetupSource& ahead = source(i + kTrianglesAhead);
-      if (ahead.clipped < 0) __builtin_prefetch(&in.triangles[ahead.triangle]);
-    }
-    if (i + kVerticesAhead < count) {
-      const SetupSource& ahead = source(i + kVerticesAhead);
-      if (ahead.clipped < 0) {
-        const glm::uvec3 tri = in.triangles[ahead.triangle];
-        for (const unsigned v : {tri.x, tri.y, tri.z}) {
-          __builtin_prefetch(&in.vertexClip[v]);
-          __builtin_prefetch(&in.vertexRaster[v]);
-        }
-        for (const Outputs::Attribute& a : out.attributes) {  // one walk of the attributes
-          const float* v[3];
-          vertexValuesOf(a, tri, v);
-          for (const float* values : v) __builtin_prefetch(values);
-        }
-      }
-    }
     const std::uint32_t name = bins[winners[i]];
     const SetupSource& own = in.coverage[name >> kBlockShift][name & kLocalMask].source;
     if (own.clipped >= 0) {
@@ -677,7 +650,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     }
   }
   shades.resize(winners.size());
-  shadeSetupsOf<kAvx2>(in, out, job.bins, winners.data(), winners.size(), shades.data());
+  shadeSetupsOf<kAvx2>(in, job.bins, winners.data(), winners.size(), shades.data());
   const auto shadeOf = [&](std::uint32_t n) -> const ShadeSetup<Real>& { return shades[std::size_t(slot[n])]; };
   // Gathered resolve (float only) needs every winner whole: a clipped one's barycentrics go
   // through its map, which only the winner-by-winner path applies.
