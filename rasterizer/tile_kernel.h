@@ -457,12 +457,25 @@ RC_KERNEL_INLINE void transpose8(f32x8 r[8]) {
 // the tile's bins (winners[i]) rather than at i: a chunk then finds its lanes' records from the
 // visibility buffer alone, without a lookup per lane. The records of set-ups that win nothing are
 // never written or read, and the fields no lane reads (15, and those past the mesh's
-// attributes) are left as they are.
+// attributes) are left as they are. The attribute values at the winners' vertices lie
+// scattered through the mesh's arrays: each winner's are prefetched kAttributesAhead winners
+// ahead (in one process, rounds alternating: 1M triangles, 2 threads, 29.2 down to 27.1 ms a
+// frame, 1 thread 46.7 down to 43.6; 100k 8.13 down to 7.87 and 14.5 down to 14.0; copying no
+// attributes at all was no faster than this). The triangles were read by the set-up pass
+// just before, so they are in cache.
 inline void packShades(const Input<float>& in, const Outputs& out, const std::uint32_t* bins,
                        const std::uint32_t* winners, const ShadeSetup<float>* shades, std::size_t count,
                        float* packs) {
-  constexpr std::size_t stride = pack::kStride;
+  constexpr std::size_t stride = pack::kStride, kAttributesAhead = 8;
   for (std::size_t i = 0; i < count; ++i) {
+    if (i + kAttributesAhead < count) {
+      const glm::uvec3 ahead = in.triangles[shades[i + kAttributesAhead].triangle];
+      for (const Outputs::Attribute& a : out.attributes) {
+        const float* v[3];
+        vertexValuesOf(a, ahead, v);
+        for (const float* values : v) __builtin_prefetch(values);
+      }
+    }
     const ShadeSetup<float>& s = shades[i];
     const std::uint32_t name = bins[winners[i]];
     const CoverageSetup<float>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
