@@ -459,10 +459,11 @@ RC_KERNEL_INLINE void transpose8(f32x8 r[8]) {
 // never written or read, and the fields no lane reads (15, and those past the mesh's
 // attributes) are left as they are. The attribute values at the winners' vertices lie
 // scattered through the mesh's arrays: each winner's are prefetched kAttributesAhead winners
-// ahead (in one process, rounds alternating: 1M triangles, 2 threads, 29.2 down to 27.1 ms a
-// frame, 1 thread 46.7 down to 43.6; 100k 8.13 down to 7.87 and 14.5 down to 14.0; copying no
-// attributes at all was no faster than this). The triangles were read by the set-up pass
-// just before, so they are in cache.
+// ahead. In one process, rounds alternating, three sittings measured 1M triangles on 2 threads
+// 25.7 down to 23.7, 28.9 down to 26.8 and 29.2 down to 27.1 ms a frame (1 thread 46.7 down to
+// 43.6; 100k 8.13 down to 7.87), as fast as copying no attributes at all; two later sittings
+// measured no difference (24.4 against 24.1, 33.0 against 32.7). The triangles were read by the
+// set-up pass just before, so they are in cache.
 inline void packShades(const Input<float>& in, const Outputs& out, const std::uint32_t* bins,
                        const std::uint32_t* winners, const ShadeSetup<float>* shades, std::size_t count,
                        float* packs) {
