@@ -263,11 +263,11 @@ RC_KERNEL_INLINE void vertexValuesOf(const Outputs::Attribute& a, const glm::uve
 
 // shadeSetupOf for the set-ups at bins[winners[0..count)]: whole triangles four at a time
 // through the batch set-up (setup_batch.h, the same bits), clipped sub-triangles one by one.
-// Nothing is prefetched: the records are still in cache from the coverage pass, and
+// Nothing is prefetched here: the records are still in cache from the coverage pass, and
 // prefetching each winner's triangle, vertices and attributes a few winners ahead, which once
 // took a millisecond off the tiles at 1M triangles, measured slower since (in one process,
 // rounds alternating, 1M: 1 thread 32.2 against 31.2 ms of tiles, 2 threads 17.9 against 17.7;
-// 100k the same).
+// 100k the same). The attributes are prefetched in packShades, which reads them.
 template <bool kAvx2, typename Real>
 inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, const std::uint32_t* winners,
                           std::size_t count, ShadeSetup<Real>* shades) {
