@@ -20,7 +20,7 @@ class HelperPool {
     for (std::thread& t : threads_) t.join();
   }
 
-  bool run(int helpers, void (*work)(void*), void* context) {
+  bool run(int helpers, void (*work)(void*, int), void* context) {
     if (busy_.exchange(true, std::memory_order_acquire)) return false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -35,7 +35,7 @@ class HelperPool {
       published_.store(++generation_, std::memory_order_release);
     }
     wake_.notify_all();
-    work(context);
+    work(context, 0);
     {
       std::unique_lock<std::mutex> lock(mutex_);
       done_.wait(lock, [this] { return running_ == 0; });
@@ -67,10 +67,10 @@ class HelperPool {
       if (stopping_) return;
       seen = generation_;
       if (index >= wanted_) continue;
-      void (*work)(void*) = work_;
+      void (*work)(void*, int) = work_;
       void* context = context_;
       lock.unlock();
-      work(context);
+      work(context, index + 1);
       lock.lock();
       if (--running_ == 0) done_.notify_one();
     }
@@ -83,7 +83,7 @@ class HelperPool {
   std::atomic<std::uint64_t> published_{0};  // generation_, readable without the mutex
   // Under mutex_:
   std::uint64_t generation_ = 0;  // one more per run
-  void (*work_)(void*) = nullptr;
+  void (*work_)(void*, int) = nullptr;
   void* context_ = nullptr;
   int wanted_ = 0;   // helpers 0 .. wanted_ - 1 take part in this run
   int running_ = 0;  // of those, the ones still working
@@ -92,7 +92,7 @@ class HelperPool {
 
 }  // namespace
 
-bool runOnHelpers(int helpers, void (*work)(void*), void* context) {
+bool runOnHelpers(int helpers, void (*work)(void*, int), void* context) {
   static HelperPool pool;
   return pool.run(helpers, work, context);
 }

@@ -188,6 +188,9 @@ struct Frame {
   std::vector<std::size_t> tileTotal;  // per tile: set-ups binned to it
   std::vector<std::size_t> binStart;  // per tile + 1
   std::vector<std::uint32_t> binned;  // set-up names, tile by tile
+  std::vector<int> blockWorker;        // per block: the worker that set it up
+  std::vector<std::size_t> tileShare;  // per worker and tile: set-ups it made binned there
+  std::vector<std::vector<int>> blockQueues, tileQueues;  // per worker (parallelForQueues)
 };
 
 template <typename Real>
@@ -380,7 +383,12 @@ struct Pipeline {
     const int blocks = int((count + blockSize - 1) / blockSize);
     const std::size_t tiles = std::size_t(tileCount());
     frame.blocks.resize(std::size_t(blocks));
-    parallelFor(blocks, options.threads, [&](int b) {
+    frame.blockWorker.assign(std::size_t(blocks), 0);
+    // Each worker sets up a contiguous run of blocks, so that the tiles can go to the worker
+    // whose caches hold most of their set-ups (renderFrame).
+    const int workers = resolveThreadCount(options.threads);
+    parallelForQueues(contiguousQueues(blocks, workers), [&](int b, int worker) {
+      frame.blockWorker[std::size_t(b)] = worker;
       SetupBlock<Real>& block = frame.blocks[b];
       block.coverage.clear();
       block.clipped.clear();
@@ -403,12 +411,18 @@ struct Pipeline {
     // array, a cache miss a step: about 1 ms at 1M triangles, serial), and each block adds
     // the tiles' starts to its own cursors below, in parallel.
     frame.tileTotal.assign(tiles, 0);
-    for (SetupBlock<Real>& block : frame.blocks) {
+    frame.tileShare.assign(std::size_t(workers) * tiles, 0);
+    frame.blockQueues.assign(std::size_t(workers), {});
+    for (std::size_t b = 0; b < frame.blocks.size(); ++b) {
+      SetupBlock<Real>& block = frame.blocks[b];
+      std::size_t* share = frame.tileShare.data() + std::size_t(frame.blockWorker[b]) * tiles;
       for (std::size_t t = 0; t < tiles; ++t) {
         const std::size_t n = block.tileCursor[t];
         block.tileCursor[t] = frame.tileTotal[t];
         frame.tileTotal[t] += n;
+        share[t] += n;
       }
+      frame.blockQueues[std::size_t(frame.blockWorker[b])].push_back(int(b));
     }
     frame.binStart.resize(tiles + 1);
     std::size_t total = 0;
@@ -419,9 +433,9 @@ struct Pipeline {
     frame.binStart[tiles] = total;
     frame.binned.resize(total);
     // A tile's list holds a few set-ups of each block, so neighbouring blocks write into the
-    // same cache lines: each thread takes a contiguous run of blocks (binning at 1M triangles,
-    // 2 threads: 1.2 to 1.0 ms).
-    parallelForContiguous(blocks, options.threads, [&](int b) {
+    // same cache lines: each worker bins the contiguous run of blocks it set up (binning at
+    // 1M triangles, 2 threads: 1.2 to 1.0 ms when each thread first took a contiguous run).
+    parallelForQueues(frame.blockQueues, [&](int b, int) {
       SetupBlock<Real>& block = frame.blocks[b];
       for (std::size_t t = 0; t < tiles; ++t) block.tileCursor[t] += frame.binStart[t];
       frame.blockCoverage[b] = block.coverage.data();
@@ -431,6 +445,15 @@ struct Pipeline {
         forEachTile(block.tileBox[i], [&](std::size_t t) { frame.binned[block.tileCursor[t]++] = name; });
       }
     });
+    // Each tile goes to the worker that made most of its set-ups; empty tiles take turns.
+    frame.tileQueues.assign(std::size_t(workers), {});
+    for (std::size_t t = 0; t < tiles; ++t) {
+      std::size_t best = t % std::size_t(workers);
+      for (std::size_t w = 0; w < std::size_t(workers); ++w) {
+        if (frame.tileShare[w * tiles + t] > frame.tileShare[best * tiles + t]) best = w;
+      }
+      frame.tileQueues[best].push_back(int(t));
+    }
     times.binMs = millisecondsSince(t1);
   }
 };
@@ -493,7 +516,7 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
   // handful of roundings (under 8 u relative) is covered by the factor 1 + 2^-16.
   in.tieScale = Real(5.0 * p.context.unitRoundoff / p.context.keyB * (1.0 + 0x1p-16));
   const KernelIsa isa = p.isa;
-  parallelFor(p.tileCount(), options.threads, [&](int tile) {
+  parallelForQueues(frame.tileQueues, [&](int tile, int) {
     const int tx = tile % p.tilesX, ty = tile / p.tilesX;
     kernel::TileJob job{frame.binned.data() + frame.binStart[tile], frame.binStart[tile + 1] - frame.binStart[tile],
                         tx * kTileSize, ty * kTileSize, std::min(p.width, (tx + 1) * kTileSize) - 1,

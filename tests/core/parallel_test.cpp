@@ -1,11 +1,14 @@
-// parallelFor: every index once, exceptions brought back, and the helper threads it keeps
-// between calls shared safely by nested and concurrent loops.
+// parallelFor and parallelForQueues: every index once, exceptions brought back, and the
+// helper threads they keep between calls shared safely by nested and concurrent loops.
 #include "core/parallel.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace rc {
@@ -53,6 +56,82 @@ TEST(ParallelFor, NestedAndConcurrentLoopsVisitEveryIndexOnce) {
   other.join();
   EXPECT_EQ(a, std::vector<int>(300, 1));
   EXPECT_EQ(b, std::vector<int>(300, 1));
+}
+
+// Queues of uneven lengths (empty ones, more queues than items, one long queue), as the
+// rasterizer makes them: every item runs once, on a worker in range, and a worker takes its
+// own queue front to back (others take from its back, so what it ran is a prefix, in order).
+TEST(ParallelForQueues, RunsEveryItemOnceAndEachWorkerItsOwnQueueInOrder) {
+  const std::vector<std::vector<std::vector<int>>> shapes = {
+      {},
+      {{0, 1, 2}},
+      {{0, 1, 2, 3, 4}, {5, 6}},
+      {{}, {0, 1, 2, 3, 4, 5, 6, 7}},
+      {{3}, {}, {}, {0, 1, 2}},
+      {{0}, {}, {}, {}, {}, {}},
+      contiguousQueues(1000, 2),
+      contiguousQueues(7, 3),
+      contiguousQueues(2, 8),
+  };
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    const auto& queues = shapes[k];
+    std::size_t items = 0;
+    for (const auto& q : queues) items += q.size();
+    for (int round = 0; round < 20; ++round) {
+      std::vector<std::atomic<int>> seen(items);
+      std::mutex mutex;
+      std::vector<std::pair<int, int>> runs;  // (worker, item) in the order each worker ran them
+      parallelForQueues(queues, [&](int item, int worker) {
+        seen[std::size_t(item)].fetch_add(1);
+        std::lock_guard<std::mutex> lock(mutex);
+        runs.emplace_back(worker, item);
+      });
+      for (std::size_t i = 0; i < items; ++i) ASSERT_EQ(seen[i].load(), 1) << "shape " << k << ", item " << i;
+      for (std::size_t w = 0; w < queues.size(); ++w) {
+        std::vector<int> own;  // the items of queue w that worker w ran, in its order
+        for (const auto& [worker, item] : runs) {
+          ASSERT_GE(worker, 0);
+          ASSERT_LT(std::size_t(worker), std::max<std::size_t>(queues.size(), 1));
+          if (std::size_t(worker) == w &&
+              std::find(queues[w].begin(), queues[w].end(), item) != queues[w].end()) {
+            own.push_back(item);
+          }
+        }
+        const std::vector<int> prefix(queues[w].begin(), queues[w].begin() + std::ptrdiff_t(own.size()));
+        EXPECT_EQ(own, prefix) << "shape " << k << ", worker " << w;
+      }
+    }
+  }
+}
+
+TEST(ParallelForQueues, OneQueueRunsOnTheCallingThreadAsWorkerZero) {
+  const auto caller = std::this_thread::get_id();
+  std::vector<int> order;
+  parallelForQueues(contiguousQueues(50, 1), [&](int item, int worker) {
+    EXPECT_EQ(worker, 0);
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    order.push_back(item);
+  });
+  std::vector<int> expected(50);
+  for (int i = 0; i < 50; ++i) expected[std::size_t(i)] = i;
+  EXPECT_EQ(order, expected);
+}
+
+TEST(ParallelForQueues, RethrowsTheFirstExceptionAndStaysUsable) {
+  EXPECT_THROW(parallelForQueues(contiguousQueues(100, 2),
+                                 [](int item, int) {
+                                   if (item == 77) throw std::runtime_error("item 77");
+                                 }),
+               std::runtime_error);
+  std::vector<std::atomic<int>> seen(300);
+  parallelForQueues(contiguousQueues(300, 2), [&](int item, int) { seen[std::size_t(item)].fetch_add(1); });
+  for (const auto& s : seen) EXPECT_EQ(s.load(), 1);
+}
+
+TEST(ParallelForQueues, ContiguousQueuesSplitTheRangeInOrder) {
+  EXPECT_EQ(contiguousQueues(7, 3), (std::vector<std::vector<int>>{{0, 1}, {2, 3}, {4, 5, 6}}));
+  EXPECT_EQ(contiguousQueues(2, 4), (std::vector<std::vector<int>>{{}, {0}, {}, {1}}));
+  EXPECT_EQ(contiguousQueues(0, 2), (std::vector<std::vector<int>>{{}, {}}));
 }
 
 }  // namespace
