@@ -55,7 +55,7 @@ namespace {
 
 template <typename Real>
 void collect(const CoverageSetup<Real>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
-  forEachCoveredChunk(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, const i32x8& mask) {
+  forEachCoveredChunk<true>(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, int, const i32x8& mask) {
     for (int k = 0; k < kLanes; ++k) {
       if (mask[k]) pixels.push_back(std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x + k));
     }
