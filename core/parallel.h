@@ -1,6 +1,8 @@
-// A minimal parallel-for over an index range. Work items are handed out dynamically, but
-// every caller writes disjoint outputs per item, so results never depend on the thread count
-// or on scheduling (STYLE.md: outputs bit-identical for 1 and N threads).
+// Minimal parallel loops: parallelFor over an index range, and parallelForQueues over one queue
+// of items per worker (for loops whose items should run on the core that made their inputs).
+// Work items are handed out dynamically, but every caller writes disjoint outputs per item, so
+// results never depend on the thread count or on scheduling (STYLE.md: outputs bit-identical
+// for 1 and N threads).
 #pragma once
 
 #include <algorithm>
