@@ -236,7 +236,9 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
-    if (isa != KernelIsa::kSse2) {  // AVX-512 adds nothing the set-up uses
+    if (isa == KernelIsa::kAvx512) {  // AVX-512 VL and DQ have int64 multiplies, min and max
+      batchSetup = batch::setupCoverageAvx512;
+    } else if (isa != KernelIsa::kSse2) {
       batchSetup = batch::setupCoverageAvx2;
     } else {
       batchSetup = batch::setupCoverageSse2;

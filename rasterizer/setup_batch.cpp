@@ -222,4 +222,16 @@ __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes
   setupShade4(tris, clip, raster, ctx, c, s);
 }
 
+#define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
+RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                             const glm::dvec2* raster, const SetupContext& ctx,
+                                             CoverageSetup<float> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                             const glm::dvec2* raster, const SetupContext& ctx,
+                                             CoverageSetup<double> c[kLanes]) {
+  return setupCoverage4(tris, clip, raster, ctx, c);
+}
+
 }  // namespace rc::batch

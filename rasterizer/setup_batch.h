@@ -4,7 +4,9 @@
 // Each lane runs setupCoverage's operations in the same order (no FMA), so every record it
 // accepts has the same bits as setupCoverage's, and every ShadeSetup as setupShade's
 // (SetupBatch.*BitForBit).
-// Compiled like the tile kernels: once for the x86-64 baseline, once with the AVX2 target.
+// Compiled for the x86-64 baseline and with the AVX2 target; the coverage half also with
+// AVX-512 (one instruction per int64 multiply, minimum and maximum), which the AVX-512 tile
+// kernels' level runs (docs/rasterizer.md, "SIMD and instruction sets").
 #pragma once
 
 #include <cstdint>
@@ -42,5 +44,10 @@ void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const
 void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
                     ShadeSetup<double>* const s[kLanes]);
+
+unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                             const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
+unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                             const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
 
 }  // namespace rc::batch

@@ -2,6 +2,7 @@
 // bit for bit, over random triangles from sub-pixel to guard-band size, for every subpixel
 // precision.
 #include "rasterizer/setup_batch.h"
+#include "rasterizer/tile_kernel.h"
 
 #include <gtest/gtest.h>
 
@@ -60,10 +61,15 @@ struct Counts {
   int accepted = 0, rejected = 0, narrow = 0, wide = 0, clockwise = 0, shaded = 0;
 };
 
+// The batch set-up's builds: setupCoverage has all three, setupShade the first two (the
+// AVX-512 tile kernels call its AVX2 build).
+enum class Isa { kSse2, kAvx2, kAvx512 };
+const char* nameOf(Isa isa) { return isa == Isa::kSse2 ? "sse2" : isa == Isa::kAvx2 ? "avx2" : "avx512"; }
+
 // Random batches of four triangles in a width x height viewport at `bits`; every lane of
 // every batch compared with setupCoverage.
 template <typename Real>
-Counts compareBatches(int bits, bool cull, bool avx2, std::uint64_t seed) {
+Counts compareBatches(int bits, bool cull, Isa isa, std::uint64_t seed) {
   SetupContext ctx{};
   ctx.width = 640, ctx.height = 480, ctx.subpixelBits = bits;
   ctx.unitRoundoff = sizeof(Real) == 4 ? 0x1p-24 : 0x1p-53, ctx.clipError = 3e-15;
@@ -98,8 +104,10 @@ Counts compareBatches(int bits, bool cull, bool avx2, std::uint64_t seed) {
       tris[k] = glm::uvec3(3 * k, 3 * k + 1, 3 * k + 2);
     }
     CoverageSetup<Real> batched[batch::kLanes];
-    const unsigned accepted = avx2 ? batch::setupCoverageAvx2(tris, clip.data(), raster.data(), ctx, batched)
-                                   : batch::setupCoverageSse2(tris, clip.data(), raster.data(), ctx, batched);
+    const unsigned accepted =
+        isa == Isa::kAvx512 ? batch::setupCoverageAvx512(tris, clip.data(), raster.data(), ctx, batched)
+        : isa == Isa::kAvx2 ? batch::setupCoverageAvx2(tris, clip.data(), raster.data(), ctx, batched)
+                            : batch::setupCoverageSse2(tris, clip.data(), raster.data(), ctx, batched);
     std::vector<ShadeSetup<Real>> shaded;
     std::vector<int> shadedLanes;
     for (int k = 0; k < batch::kLanes; ++k) {
@@ -139,7 +147,7 @@ Counts compareBatches(int bits, bool cull, bool avx2, std::uint64_t seed) {
         coverage[k] = &batched[lane];
         into[k] = &got[k];
       }
-      if (avx2) {
+      if (isa != Isa::kSse2) {
         batch::setupShadeAvx2(shadeTris, clip.data(), raster.data(), ctx, coverage, into);
       } else {
         batch::setupShadeSse2(shadeTris, clip.data(), raster.data(), ctx, coverage, into);
@@ -157,13 +165,13 @@ Counts compareBatches(int bits, bool cull, bool avx2, std::uint64_t seed) {
 }
 
 template <typename Real>
-void checkAllPrecisions(bool avx2) {
+void checkAllPrecisions(Isa isa) {
   Counts total;
   for (const int bits : {1, 4, 8, 12, 16}) {
-    SCOPED_TRACE("bits " + std::to_string(bits) + (avx2 ? ", avx2" : ", sse2"));
+    SCOPED_TRACE("bits " + std::to_string(bits) + ", " + nameOf(isa));
     // The same triangles with and without culling.
-    const Counts drawn = compareBatches<Real>(bits, false, avx2, 1000u * bits);
-    const Counts culled = compareBatches<Real>(bits, true, avx2, 1000u * bits);
+    const Counts drawn = compareBatches<Real>(bits, false, isa, 1000u * bits);
+    const Counts culled = compareBatches<Real>(bits, true, isa, 1000u * bits);
     EXPECT_GT(drawn.accepted, 1000);
     EXPECT_EQ(drawn.shaded, drawn.accepted);
     EXPECT_GT(drawn.rejected, 1000);
@@ -178,11 +186,14 @@ void checkAllPrecisions(bool avx2) {
 }
 
 TEST(SetupBatch, MatchesSetupCoverageAndSetupShadeBitForBit) {
-  checkAllPrecisions<float>(false);
-  checkAllPrecisions<double>(false);
+  checkAllPrecisions<float>(Isa::kSse2);
+  checkAllPrecisions<double>(Isa::kSse2);
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this CPU";
-  checkAllPrecisions<float>(true);
-  checkAllPrecisions<double>(true);
+  checkAllPrecisions<float>(Isa::kAvx2);
+  checkAllPrecisions<double>(Isa::kAvx2);
+  if (!kernel::cpuHasKernelAvx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  checkAllPrecisions<float>(Isa::kAvx512);
+  checkAllPrecisions<double>(Isa::kAvx512);
 }
 
 // The comparison above sees a change of one bit in any field.
