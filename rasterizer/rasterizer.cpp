@@ -105,7 +105,7 @@ glm::dvec2 rasterOf(const Camera& camera, const glm::dvec4& c) {
 // 1 thread, whose lines are its own, 2.8 up to 3.5 ms). Set-up reads them back no slower.
 void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t end, const glm::dmat4& m,
                      const ClipVolume<double>& volume, const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
-                     std::uint8_t* outcode, double& largest, double& nearestW) {
+                     std::uint8_t* outcode, double& largest, double& nearestW, unsigned& outcodes) {
   for (std::size_t i = begin; i < end; ++i) {
     const glm::dvec3 p(positions[i]);
     const glm::dvec4 c = m * glm::dvec4(p, 1.0);
@@ -113,6 +113,7 @@ void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t 
     _mm_stream_pd(to, _mm_set_pd(c.y, c.x));
     _mm_stream_pd(to + 2, _mm_set_pd(c.w, c.z));
     outcode[i] = std::uint8_t(volume.outcode(c));
+    outcodes |= outcode[i];
     glm::dvec2 r(0.0);
     if (outcode[i] == 0) r = rasterOf(camera, c);  // what emit() would compute
     _mm_stream_pd(reinterpret_cast<double*>(raster + i), _mm_set_pd(r.y, r.x));
@@ -129,7 +130,8 @@ void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t 
 __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, std::size_t begin, std::size_t end,
                                                    const glm::dmat4& m, const ClipVolume<double>& volume,
                                                    const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
-                                                   std::uint8_t* outcode, double& largestOut, double& nearestWOut) {
+                                                   std::uint8_t* outcode, double& largestOut, double& nearestWOut,
+                                                   unsigned& outcodesOut) {
   const double width = camera.width(), height = camera.height();
   const __m256d m0 = _mm256_loadu_pd(&m[0][0]), m1 = _mm256_loadu_pd(&m[1][0]);
   const __m256d m2 = _mm256_loadu_pd(&m[2][0]), m3 = _mm256_loadu_pd(&m[3][0]);
@@ -139,6 +141,7 @@ __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, s
   const __m128d size = _mm_set_pd(height, width);
   const bool farPlane = !std::isinf(volume.zFar);
   double largest = largestOut, nearestW = nearestWOut;
+  unsigned outcodes = outcodesOut;
   for (std::size_t i = begin; i < end; ++i) {
     const double px = positions[i].x, py = positions[i].y, pz = positions[i].z;
     const __m256d c = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, _mm256_set1_pd(px)), _mm256_mul_pd(m1, _mm256_set1_pd(py))),
@@ -154,6 +157,7 @@ __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, s
     if (!(w - volume.zNear >= 0.0)) code |= 1u;
     if (farPlane && !(volume.zFar - w >= 0.0)) code |= 2u;
     outcode[i] = std::uint8_t(code);
+    outcodes |= code;
     __m128d r = _mm_setzero_pd();
     if (code == 0) {
       const __m128d ndc = _mm_div_pd(_mm256_castpd256_pd128(c), _mm256_castpd256_pd128(w4));
@@ -165,6 +169,7 @@ __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, s
   }
   largestOut = largest;
   nearestWOut = nearestW;
+  outcodesOut = outcodes;
 }
 
 template <typename Real>
@@ -182,6 +187,8 @@ struct Frame {
   std::vector<std::uint8_t> outcode;  // per mesh vertex (clip.h)
   std::vector<double> largest;   // per transform block: max |world coordinate|, at least 1
   std::vector<double> nearestW;  // per transform block: min clip w
+  std::vector<unsigned> outcodes;  // per transform block: its vertices' outcodes, or-ed
+  bool allInside = false;         // every vertex inside the view volume: every triangle whole
   std::vector<SetupBlock<Real>> blocks;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
   std::vector<const ClippedTriangle<Real>*> blockClipped;
@@ -265,14 +272,17 @@ struct Pipeline {
     const int blocks = int((positions.size() + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
     frame.largest.assign(blocks, 1.0);
     frame.nearestW.assign(blocks, std::numeric_limits<double>::infinity());
+    frame.outcodes.assign(blocks, 0u);
     const auto transformRange = isa != KernelIsa::kSse2 ? transformAvx2 : transformScalar;
     parallelFor(blocks, options.threads, [&](int b) {
       const std::size_t end = std::min(positions.size(), std::size_t(b + 1) * kTrianglesPerBlock);
       double largest = 1.0, nearestW = std::numeric_limits<double>::infinity();
+      unsigned outcodes = 0;
       transformRange(positions.data(), std::size_t(b) * kTrianglesPerBlock, end, clipFromWorld, volume, scene.camera,
-                     frame.clip.data(), frame.raster.data(), frame.outcode.data(), largest, nearestW);
+                     frame.clip.data(), frame.raster.data(), frame.outcode.data(), largest, nearestW, outcodes);
       frame.largest[b] = largest;
       frame.nearestW[b] = nearestW;
+      frame.outcodes[b] = outcodes;
       _mm_sfence();
     });
     // Each clip coordinate is a 4-term dot product in double (p_3 = 1):
@@ -293,6 +303,7 @@ struct Pipeline {
         frame.nearestW.empty() ? 0.0 : *std::min_element(frame.nearestW.begin(), frame.nearestW.end());
     context.cullBackFaces = options.culling == Culling::kAuto && scene.mesh.closedSolid &&
                             nearestW - context.clipError > scene.camera.zNear();
+    frame.allInside = std::all_of(frame.outcodes.begin(), frame.outcodes.end(), [](unsigned c) { return c == 0; });
   }
 
   glm::dvec2 rasterOf(const glm::dvec4& c) const { return rc::rasterOf(scene.camera, c); }
@@ -311,22 +322,40 @@ struct Pipeline {
     block.coverage.back().source = {triangle, clipped};
   }
 
+  // The batch set-up of whole triangles tris[0..kLanes) into c, appending the set-ups it
+  // accepts among the first n under their triangle ids, idOf(k); the lanes past n are ignored.
+  template <typename IdOf>
+  void setupWhole(const glm::uvec3 tris[batch::kLanes], std::size_t n, IdOf&& idOf, CoverageSetup<Real> c[batch::kLanes],
+                  SetupBlock<Real>& block) const {
+    const unsigned accepted = batchSetup(tris, frame.clip.data(), frame.raster.data(), context, c);
+    for (std::size_t k = 0; k < n; ++k) {
+      if ((accepted >> k) & 1u) append(block, c[k], idOf(k), -1);
+    }
+  }
+
   // Whole triangles (every vertex inside the view volume) go through the batch set-up four at
   // a time; a clipped triangle first flushes the batch, so set-ups stay in triangle order.
   void setupTriangleRange(std::size_t begin, std::size_t end, SetupBlock<Real>& block) const {
     const auto& triangles = scene.mesh.triangles;
-    const auto& clip = frame.clip;
     glm::uvec3 pendingTris[batch::kLanes];
     std::uint32_t pendingIds[batch::kLanes];
+    CoverageSetup<Real> c[batch::kLanes];
+    if (frame.allInside && options.wholeMeshBatches) {
+      // Every vertex is inside the view volume, so every triangle is whole: four at a time,
+      // in order, without reading outcodes (set-up at 1M triangles about 15% faster).
+      for (std::size_t t = begin; t < end; t += batch::kLanes) {
+        const std::size_t n = std::min<std::size_t>(batch::kLanes, end - t);
+        for (std::size_t k = 0; k < batch::kLanes; ++k) pendingTris[k] = triangles[t + (k < n ? k : 0)];
+        setupWhole(pendingTris, n, [t](std::size_t k) { return std::uint32_t(t + k); }, c, block);
+      }
+      return;
+    }
+    const auto& clip = frame.clip;
     int pending = 0;
     const auto flush = [&] {
       if (pending == 0) return;
-      for (int k = pending; k < batch::kLanes; ++k) pendingTris[k] = pendingTris[0];  // lanes ignored below
-      CoverageSetup<Real> c[batch::kLanes];
-      const unsigned accepted = batchSetup(pendingTris, frame.clip.data(), frame.raster.data(), context, c);
-      for (int k = 0; k < pending; ++k) {
-        if ((accepted >> k) & 1u) append(block, c[k], pendingIds[k], -1);
-      }
+      for (int k = pending; k < batch::kLanes; ++k) pendingTris[k] = pendingTris[0];  // lanes ignored
+      setupWhole(pendingTris, std::size_t(pending), [&](std::size_t k) { return pendingIds[k]; }, c, block);
       pending = 0;
     };
     for (std::size_t t = begin; t < end; ++t) {

@@ -59,6 +59,10 @@ struct RasterOptions {
   // Resolve a row chunk of several winners in one pass over its lanes (float; tile_kernel.h)
   // rather than winner by winner. The same bits either way: off only to test that.
   bool gatheredResolve = true;
+  // When every vertex lies inside the view volume, set up the triangles four at a time in
+  // order without testing each one's outcodes (rasterizer.cpp). The same bits either way: off
+  // only to test that.
+  bool wholeMeshBatches = true;
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real
