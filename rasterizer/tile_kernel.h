@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "core/channels.h"
+#include "core/line_allocator.h"
 #include "core/stream_row.h"
 #include "rasterizer/coverage.h"
 #include "rasterizer/interpolate.h"
@@ -734,7 +735,9 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   const auto shadeOf = [&](std::uint32_t n) -> const ShadeSetup<Real>& { return shades[std::size_t(slot[n])]; };
   // Gathered resolve (float only) needs every winner whole: a clipped one's barycentrics go
   // through its map, which only the winner-by-winner path applies.
-  thread_local std::vector<float> packs;
+  // Records and staging rows start on a cache line, so that no 32-byte access straddles two
+  // (core/line_allocator.h).
+  thread_local std::vector<float, LineAllocator<float>> packs;
   constexpr std::size_t packStride = pack::kStride;
   bool gathered = false;
   if constexpr (sizeof(Real) == 4) {
@@ -752,7 +755,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   const bool diagnostics = out.edgeDistance != nullptr;
   // Staging rows: id, b0..b2, depth, the four diagnostics, then the attribute components.
   constexpr int kFixedPlanes = 9, kStride = kTileSize + kLanes;
-  std::vector<std::uint32_t> stage(std::size_t(kFixedPlanes + components) * kStride);
+  std::vector<std::uint32_t, LineAllocator<std::uint32_t>> stage(std::size_t(kFixedPlanes + components) * kStride);
   std::vector<std::uint32_t*> planes = {out.id,
                                         reinterpret_cast<std::uint32_t*>(out.bary[0]),
                                         reinterpret_cast<std::uint32_t*>(out.bary[1]),

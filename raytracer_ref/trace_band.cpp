@@ -11,6 +11,7 @@
 
 #include "core/channels.h"
 #include "core/lanes.h"
+#include "core/line_allocator.h"
 #include "core/stream_row.h"
 #include "raytracer_ref/ray_triangle.h"
 
@@ -96,7 +97,7 @@ struct Tracer {
   // square roots (sqrt is correctly rounded, so monotonic), as glm::length gives them.
   // lanes::stdMax, like std::max, skips a NaN.
   f64x4 embreeDiffSquaredMax{};
-  std::vector<std::uint32_t> stage;
+  std::vector<std::uint32_t, LineAllocator<std::uint32_t>> stage;  // on a cache line, as the tiles' rows
 
   RC_LANES_INLINE explicit Tracer(const BandInput& input)
       : in(input), camera(*input.camera), mesh(*input.mesh),
