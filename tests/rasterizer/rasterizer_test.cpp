@@ -231,8 +231,9 @@ TEST(Rasterizer, GatheredResolveGivesTheSameBitsAsWinnerByWinner) {
 // When every vertex lies inside the view volume, set-up takes the triangles four at a time
 // without reading outcodes (RasterOptions::wholeMeshBatches); it must make the same set-ups,
 // in the same order, as the loop that tests each triangle. The blob's 19,880 triangles fill
-// several blocks; fans, huge and perspective end on a short batch (229 and 5 triangles); both
-// precisions and the SSE2 set-up, as well as the widest.
+// several blocks; fans and perspective end on a short batch (229 and 5 triangles); huge has
+// vertices a billion pixels out, past the guard band, so both of its frames take the loop (the
+// switch must change nothing there). Both precisions, the SSE2 set-up and the widest.
 TEST(Rasterizer, WholeMeshBatchesGiveTheSameBitsAsTheOutcodeLoop) {
   for (const char* spec : {"blob:tris=20000", "fans", "huge", "perspective", "attributes", "cube"}) {
     const Scene scene = makeBuiltinScene(spec);
