@@ -84,7 +84,7 @@ void BM_Coverage(benchmark::State& state) {
   makeEdgeFunctions(x, y, e);
   long long covered = 0;
   for (auto _ : state) {
-    kernel::coverRows<Lane, true>(e, kBits, 0, 0, size - 1, size - 1, [&](int, int, int, const kernel::i32x8& mask) {
+    kernel::coverRows<Lane, true, 16>(e, kBits, 0, 0, size - 1, size - 1, [&](int, int, int, const kernel::i32x8& mask) {
       covered += kernel::any(mask);
     });
     benchmark::DoNotOptimize(covered);

@@ -12,29 +12,29 @@
 namespace rc::kernel {
 
 void renderTileSse2(const Input<float>& in, const Outputs& out, const TileJob& job) {
-  renderTile<float, false>(in, out, job);
+  renderTile<float, 16>(in, out, job);
 }
 void renderTileSse2(const Input<double>& in, const Outputs& out, const TileJob& job) {
-  renderTile<double, false>(in, out, job);
+  renderTile<double, 16>(in, out, job);
 }
 
 __attribute__((target("avx2"))) void renderTileAvx2(const Input<float>& in, const Outputs& out,
                                                     const TileJob& job) {
-  renderTile<float, true>(in, out, job);
+  renderTile<float, 32>(in, out, job);
 }
 __attribute__((target("avx2"))) void renderTileAvx2(const Input<double>& in, const Outputs& out,
                                                     const TileJob& job) {
-  renderTile<double, true>(in, out, job);
+  renderTile<double, 32>(in, out, job);
 }
 
 // The same kernel with AVX-512 enabled: GCC then keeps 8 lanes of int64 or double in one zmm
 // register instead of two ymm ones. Same operations, same bits.
 #define RC_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
 RC_TARGET_AVX512 void renderTileAvx512(const Input<float>& in, const Outputs& out, const TileJob& job) {
-  renderTile<float, true>(in, out, job);
+  renderTile<float, 64>(in, out, job);
 }
 RC_TARGET_AVX512 void renderTileAvx512(const Input<double>& in, const Outputs& out, const TileJob& job) {
-  renderTile<double, true>(in, out, job);
+  renderTile<double, 64>(in, out, job);
 }
 bool cpuHasKernelAvx512() {
   return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
@@ -55,7 +55,7 @@ namespace {
 
 template <typename Real>
 void collect(const CoverageSetup<Real>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
-  forEachCoveredChunk<true>(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, int, const i32x8& mask) {
+  forEachCoveredChunk<true, 16>(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, int, const i32x8& mask) {
     for (int k = 0; k < kLanes; ++k) {
       if (mask[k]) pixels.push_back(std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x + k));
     }

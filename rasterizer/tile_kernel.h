@@ -3,7 +3,9 @@
 // of a row at a time in GCC vector extensions. The same source is compiled for SSE2 (any
 // x86-64), AVX2 and AVX-512 (the rasterizer picks one at run time); each lane runs the formulas
 // of setup.h and interpolate.h in the same order, without FMA, so all give the same bits
-// (Rasterizer.OutputBitsAreIdenticalOnEveryKernelIsa).
+// (Rasterizer.OutputBitsAreIdenticalOnEveryKernelIsa). Comparisons and selects go through
+// core/split_vectors.h with the target's register width (kWidth), since GCC lowers those on a
+// vector wider than the registers lane by lane.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 
 #include "core/channels.h"
 #include "core/line_allocator.h"
+#include "core/split_vectors.h"
 #include "core/stream_row.h"
 #include "rasterizer/coverage.h"
 #include "rasterizer/interpolate.h"
@@ -129,8 +132,8 @@ RC_KERNEL_INLINE bool any(const i32x8& m) {
   std::memcpy(q, &m, sizeof q);
   return (q[0] | q[1] | q[2] | q[3]) != 0;
 }
-// any() in one instruction where the caller is AVX2 code (renderTile<Real, true>): vptest sets
-// ZF when every bit is 0. The generic form goes through memory, four loads and three ORs,
+// any() in one instruction where the caller is AVX2 or AVX-512 code (renderTile<Real, 32>
+// or <Real, 64>): vptest sets ZF when every bit is 0. The generic form goes through memory, four loads and three ORs,
 // 3 to 6% of the tiles' time. Written as asm since an AVX2 builtin cannot sit in code shared
 // with the SSE2 build; the operand is a ymm register only once GCC has inlined it into AVX2
 // code. Clang checks the operand's size before inlining and refuses it, so a clang build (the
@@ -181,6 +184,24 @@ RC_KERNEL_INLINE f32x8 toFloat(const typename Lanes<Real>::V& v) {
   }
 }
 
+// The lanes of v (eight int32 or int64) that are not negative, as a mask of int32 lanes. An
+// int64 lane is not negative when its high word, as an int32, is not: where the target has no
+// 64-byte registers, that high word's test is what compiles well (whole, GCC tests the lanes
+// one by one in scalar registers; in halves, the loop keeps its vectors in memory).
+template <std::size_t kWidth, typename LaneVector>
+RC_KERNEL_INLINE i32x8 nonNegative(const LaneVector& v) {
+  using Lane = std::remove_cvref_t<decltype(v[0])>;
+  if constexpr (sizeof(Lane) == 4) {
+    return split::greaterEqual<kWidth>(v, Lane(0));
+  } else if constexpr (kWidth >= sizeof(LaneVector)) {
+    return __builtin_convertvector(v >= 0, i32x8);
+  } else {
+    typedef std::uint64_t U64x8 __attribute__((vector_size(64)));
+    const u32x8 high = __builtin_convertvector(U64x8(v) >> 32, u32x8);
+    return split::greaterEqual<kWidth>(i32x8(high), 0);
+  }
+}
+
 // Exact coverage, a row chunk of eight pixels at a time. Narrow set-ups (every value below
 // 2^31, CoverageSetup::kNarrow) take int32 lanes, the others int64 lanes (values below 2^62:
 // products below 2^61, plus at most 8 steps of 2^46). With kVectorSteps (the AVX2 and AVX-512
@@ -196,7 +217,7 @@ RC_KERNEL_INLINE f32x8 toFloat(const typename Lanes<Real>::V& v) {
 // no lane is set: a test of the mask here was a data-dependent branch per chunk, and with the
 // depth test's own (below) it mispredicted often enough that the tiles ran 10% faster without
 // both. The limit x + k <= xb is a fourth value that must not be negative, xb - x - k.
-template <typename Lane, bool kVectorSteps, typename Fn>
+template <typename Lane, bool kVectorSteps, std::size_t kWidth, typename Fn>
 RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya, int xb, int yb, Fn&& fn) {
   typedef Lane LaneVector __attribute__((vector_size(kLanes * sizeof(Lane))));
   if constexpr (!kVectorSteps) {
@@ -216,13 +237,8 @@ RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya
       for (int x = xa, column = 0; x <= xb; x += kLanes, ++column) {
         const LaneVector all = (Lane(chunk[0]) + laneStep[0]) | (Lane(chunk[1]) + laneStep[1]) |
                                (Lane(chunk[2]) + laneStep[2]);
-        i32x8 mask;
-        if constexpr (sizeof(Lane) == 4) {
-          mask = all >= 0;  // all three non-negative
-        } else {
-          mask = __builtin_convertvector(all >= 0, i32x8);
-        }
-        mask &= iota32() + x <= xb;
+        i32x8 mask = nonNegative<kWidth>(all);  // all three non-negative
+        mask &= split::lessEqual<kWidth>(iota32() + x, xb);
         fn(x, y, column, mask);
         for (int i = 0; i < 3; ++i) chunk[i] += chunkStep[i];
       }
@@ -253,12 +269,7 @@ RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya
     UnsignedVector v0 = rowValue0, v1 = rowValue1, v2 = rowValue2, limit = rowLimit;
     for (int x = xa, column = 0; x <= xb; x += kLanes, ++column) {
       const LaneVector all = LaneVector(v0 | v1 | v2 | limit);
-      i32x8 mask;
-      if constexpr (sizeof(Lane) == 4) {
-        mask = all >= 0;  // all four non-negative
-      } else {
-        mask = __builtin_convertvector(all >= 0, i32x8);
-      }
+      const i32x8 mask = nonNegative<kWidth>(all);  // all four non-negative
       fn(x, y, column, mask);
       v0 += chunk0, v1 += chunk1, v2 += chunk2, limit -= Unsigned(kLanes);
     }
@@ -266,13 +277,13 @@ RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya
   }
 }
 
-template <bool kVectorSteps, typename Real, typename Fn>
+template <bool kVectorSteps, std::size_t kWidth, typename Real, typename Fn>
 RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits, int xa, int ya, int xb, int yb,
                                           Fn&& fn) {
   if (c.flags & CoverageSetup<Real>::kNarrow) {
-    coverRows<std::int32_t, kVectorSteps>(c.edges(), bits, xa, ya, xb, yb, fn);
+    coverRows<std::int32_t, kVectorSteps, kWidth>(c.edges(), bits, xa, ya, xb, yb, fn);
   } else {
-    coverRows<std::int64_t, kVectorSteps>(c.edges(), bits, xa, ya, xb, yb, fn);
+    coverRows<std::int64_t, kVectorSteps, kWidth>(c.edges(), bits, xa, ya, xb, yb, fn);
   }
 }
 
@@ -378,36 +389,37 @@ RC_KERNEL_INLINE T absOf(const T& v) {
 // and the depth tie, in Real (tieScale carries the rounding of this evaluation). H is the
 // winner's scalars (winner by winner) or each lane's own (the gathered resolve); the operations
 // and their order are the same either way.
-template <typename V, typename H, typename Real>
+template <std::size_t kWidth, typename V, typename H, typename Real>
 RC_KERNEL_INLINE void diagnosticsOf(const V l[3], const H height[3], const H& key0, const H& keyX, const H& keyY,
                                     const V& dx, const H& dy, const V& depth, Real tieScale, V& edgeDistance,
                                     V& depthTie) {
-  V nearest = std::numeric_limits<Real>::infinity() + V{};
+  V nearest = split::splat<kWidth, V>(std::numeric_limits<Real>::infinity());
   for (int i = 0; i < 3; ++i) {
-    const V d = (l[i] < Real(0) ? -l[i] : l[i]) * height[i];
+    const V d = split::select<kWidth>(split::less<kWidth>(l[i], Real(0)), -l[i], l[i]) * height[i];
     if constexpr (std::is_arithmetic_v<H>) {
-      if (!(height[i] < Real(0))) nearest = d < nearest ? d : nearest;
+      if (!(height[i] < Real(0))) nearest = split::select<kWidth>(split::less<kWidth>(d, nearest), d, nearest);
     } else {
-      nearest = (~(height[i] < Real(0)) & (d < nearest)) ? d : nearest;
+      nearest = split::select<kWidth>(~split::less<kWidth>(height[i], Real(0)) & split::less<kWidth>(d, nearest), d,
+                                      nearest);
     }
   }
   edgeDistance = nearest;
   const V kx = keyX * dx;
   const H ky = absOf(keyY * dy);
-  const V terms = absOf(key0) + (kx < Real(0) ? -kx : kx) + ky;
+  const V terms = absOf(key0) + split::select<kWidth>(split::less<kWidth>(kx, Real(0)), -kx, kx) + ky;
   depthTie = tieScale * terms * depth;
 }
 
 // One attribute's kComponents components at barycentrics b, from its values at the three
 // vertices, into rows `stride` floats apart: all eight lanes, or with kBlend only `mine`.
-template <bool kBlend, int kComponents, typename V>
+template <bool kBlend, int kComponents, std::size_t kWidth, typename V>
 RC_KERNEL_INLINE void interpolateInto(const V b[3], const float* const v[3], float* into, std::size_t stride,
                                       const i32x8& mine) {
   using Real = decltype(b[0][0] + 0);
   for (int j = 0; j < kComponents; ++j, into += stride) {
     const f32x8 value = toFloat<Real>(b[0] * Real(v[0][j]) + b[1] * Real(v[1][j]) + b[2] * Real(v[2][j]));
     if constexpr (kBlend) {
-      store(into, mine ? value : load<f32x8>(into));
+      store(into, split::select<kWidth>(mine, value, load<f32x8>(into)));
     } else {
       store(into, value);
     }
@@ -416,7 +428,7 @@ RC_KERNEL_INLINE void interpolateInto(const V b[3], const float* const v[3], flo
 
 // The attributes go straight into `attributes` (one row of `stride` floats per component): all
 // eight lanes, or with kBlend only the lanes set in `mine`.
-template <bool kBlend, typename Real>
+template <bool kBlend, std::size_t kWidth, typename Real>
 RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, std::uint32_t name,
                                    const ShadeSetup<Real>& s, int x, int y, Resolved& r, float* attributes,
                                    std::size_t stride, const i32x8& mine) {
@@ -440,7 +452,7 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   r.depth = toFloat<Real>(depth);
   if (out.edgeDistance) {
     V edgeDistance, depthTie;
-    diagnosticsOf(l, s.edgeHeight, c.key0, c.keyX, c.keyY, dx, dy, depth, in.tieScale, edgeDistance, depthTie);
+    diagnosticsOf<kWidth>(l, s.edgeHeight, c.key0, c.keyX, c.keyY, dx, dy, depth, in.tieScale, edgeDistance, depthTie);
     r.edgeDistance = toFloat<Real>(edgeDistance);
     r.depthTie = toFloat<Real>(depthTie);
   }
@@ -450,7 +462,7 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
     const float* v[3];
     vertexValuesOf(a, tri, v);
     withComponents(a.components, [&](auto n) __attribute__((always_inline)) {
-      interpolateInto<kBlend, decltype(n)::value>(b, v, into, stride, mine);
+      interpolateInto<kBlend, decltype(n)::value, kWidth>(b, v, into, stride, mine);
     });
     into += stride * std::size_t(a.components);
   }
@@ -477,9 +489,35 @@ constexpr int kMaxComponents = 8;
 constexpr std::size_t kStride = kAttributes + kMaxComponents * 3;  // 48 floats
 }  // namespace pack
 
-// Eight rows of eight floats -> eight columns, in place (the classic AVX unpack / shuffle /
-// 128-bit permute sequence, written as generic shuffles so that the SSE2 build has it too).
+// Four rows of four floats -> four columns (unpcklps / unpckhps / movlhps / movhlps).
+typedef float f32x4 __attribute__((vector_size(16)));
+RC_KERNEL_INLINE void transpose4(const f32x4 in[4], f32x4 out[4]) {
+  const f32x4 t0 = __builtin_shufflevector(in[0], in[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(in[0], in[1], 2, 6, 3, 7);
+  const f32x4 t2 = __builtin_shufflevector(in[2], in[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(in[2], in[3], 2, 6, 3, 7);
+  out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5), out[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  out[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5), out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// Eight rows of eight floats -> eight columns, in place: the classic AVX unpack / shuffle /
+// 128-bit permute sequence, as generic shuffles. Where the registers hold four floats (kWidth
+// 16, the SSE2 build), four 4x4 transposes of the rows' halves instead: GCC lowers an 8-lane
+// shuffle there lane by lane through memory wherever it mixes halves.
+template <std::size_t kWidth>
 RC_KERNEL_INLINE void transpose8(f32x8 r[8]) {
+  if constexpr (kWidth < 32) {
+    f32x4 low[8], high[8], out[4];
+    for (int i = 0; i < 8; ++i) low[i] = split::lowOf(r[i]), high[i] = split::highOf(r[i]);
+    f32x4 column[8][2];  // column j's halves: rows 0-3 and rows 4-7
+    for (int half = 0; half < 2; ++half) {
+      const f32x4* rows = half == 0 ? low : high;  // columns 0-3 or 4-7
+      for (int block = 0; block < 2; ++block) {    // rows 0-3 or 4-7
+        transpose4(rows + 4 * block, out);
+        for (int j = 0; j < 4; ++j) column[4 * half + j][block] = out[j];
+      }
+    }
+    for (int j = 0; j < 8; ++j) r[j] = split::joined(column[j][0], column[j][1]);
+    return;
+  }
   f32x8 t[8], u[8];
   for (int i = 0; i < 8; i += 2) {
     t[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
@@ -554,39 +592,41 @@ inline void packShades(const Input<float>& in, const Outputs& out, const std::ui
 }
 
 // Field group g (fields 8g .. 8g + 7) of the eight lanes' records, one vector per field.
+template <std::size_t kWidth>
 RC_KERNEL_INLINE void gatherGroup(const float* const record[kLanes], int g, f32x8 field[kLanes]) {
   for (int k = 0; k < kLanes; ++k) field[k] = load<f32x8>(record[k] + g * pack::kGroup);
-  transpose8(field);
+  transpose8<kWidth>(field);
 }
 
 // Chunks of up to this many runs of one winner are resolved winner by winner
-// (docs/rasterizer.md, "Gathered resolve"). With AVX2 and AVX-512 a chunk of two runs already
-// resolves faster gathered (in one process, rounds alternating: 100k triangles, 2 threads, 9.26
-// against 9.94 ms a frame; 1 thread 17.4 against 18.9; 1k and 1M the same or a little
-// faster); the SSE2 build's transposes cost more, and two runs there keep the two passes.
-template <bool kAvx2>
-constexpr int kGatherAbove = kAvx2 ? 1 : 2;
+// (docs/rasterizer.md, "Gathered resolve"). A chunk of two runs already resolves faster
+// gathered: with AVX2 and AVX-512 (in one process, rounds alternating: 100k triangles, 2
+// threads, 9.26 against 9.94 ms a frame; 1 thread 17.4 against 18.9; 1k and 1M the same or a
+// little faster), and with SSE2 once its transposes took 4x4 halves (100k 14.0 against 16.9 ms,
+// 14.2 against 16.4; 1k 7.7 against 8.1).
+constexpr int kGatherAbove = 1;
 // Whether the chunk's winner changes from lane to lane at least n times, that is, whether it
 // has more than n runs of lanes with one winner (or none). A triangle's pixels in a row chunk
 // are one run, so this counts its winners, empty lanes as one more, in four instructions.
 // Counting the distinct winners exactly took a chain of lane extractions, 5% of the tiles'
 // time at 100k triangles. Only the path taken depends on it: both give the same bits.
-template <bool kAvx2>
+template <std::size_t kWidth>
 RC_KERNEL_INLINE bool moreRunsThan(const u32x8& w, int n) {
   const u32x8 previous = __builtin_shufflevector(w, w, 0, 0, 1, 2, 3, 4, 5, 6);
-  return __builtin_popcount(laneBits<kAvx2>(w != previous)) >= n;
+  return __builtin_popcount(laneBits<(kWidth >= 32)>(split::notEqual<kWidth>(w, previous))) >= n;
 }
 
 // resolveLanes for lanes with different winners: lane k's record is record[k]. Lanes outside
 // `valid` get what the winner-by-winner path leaves there: zeros and no triangle.
+template <std::size_t kWidth>
 RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out, const float* const record[kLanes],
                                       int x, int y, const i32x8& valid, Resolved& r, u32x8& id, f32x8& baryBound,
                                       f32x8& depthBound, float* attributes, std::size_t stride) {
   baryBound = depthBound = f32x8{};  // written only with diagnostics
   f32x8 f[kLanes];
-  gatherGroup(record, 0, f);
+  gatherGroup<kWidth>(record, 0, f);
   f32x8 g[kLanes];
-  gatherGroup(record, 1, g);
+  gatherGroup<kWidth>(record, 1, g);
   // Fields 0..7 in f, 8..15 in g.
   const f32x8 dx = (float(x) + iota<float>()) - g[pack::kAnchorX - 8];  // small integers: exact
   const f32x8 dy = float(y) - g[pack::kAnchorY - 8];
@@ -600,32 +640,32 @@ RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out
   const f32x8* const b = recovered.b;
   const f32x8 depth = recovered.depth;
   const f32x8 none{};
-  for (int i = 0; i < 3; ++i) r.bary[i] = valid ? b[i] : none;
-  r.depth = valid ? depth : none;
+  for (int i = 0; i < 3; ++i) r.bary[i] = split::select<kWidth>(valid, b[i], none);
+  r.depth = split::select<kWidth>(valid, depth, none);
   u32x8 triangle;
   std::memcpy(&triangle, &g[pack::kTriangle - 8], sizeof triangle);
-  id = valid ? triangle : u32x8{} + channels::kNoTriangle;
+  id = split::select<kWidth>(valid, triangle, split::splat<kWidth, u32x8>(channels::kNoTriangle));
   if (out.edgeDistance) {
     f32x8 h[kLanes];
-    gatherGroup(record, 2, h);
+    gatherGroup<kWidth>(record, 2, h);
     f32x8 edgeDistance, depthTie;
-    diagnosticsOf(l, h + (pack::kEdgeHeight - 16), h[pack::kKey0 - 16], h[pack::kKeyX - 16], h[pack::kKeyY - 16], dx, dy,
+    diagnosticsOf<kWidth>(l, h + (pack::kEdgeHeight - 16), h[pack::kKey0 - 16], h[pack::kKeyX - 16], h[pack::kKeyY - 16], dx, dy,
                   depth, in.tieScale, edgeDistance, depthTie);
-    r.edgeDistance = valid ? edgeDistance : none;
-    r.depthTie = valid ? depthTie : none;
-    baryBound = valid ? h[pack::kBaryBound - 16] : none;
-    depthBound = valid ? h[pack::kDepthBound - 16] : none;
+    r.edgeDistance = split::select<kWidth>(valid, edgeDistance, none);
+    r.depthTie = split::select<kWidth>(valid, depthTie, none);
+    baryBound = split::select<kWidth>(valid, h[pack::kBaryBound - 16], none);
+    depthBound = split::select<kWidth>(valid, h[pack::kDepthBound - 16], none);
   }
   // The attributes' vertex values, three fields per component (at most pack::kMaxComponents).
   f32x8 v[pack::kMaxComponents * 3 / pack::kGroup * kLanes];
   const int components = out.attributeComponents;
   for (int group = 0; group * pack::kGroup < 3 * components; ++group) {
-    gatherGroup(record, pack::kAttributes / pack::kGroup + group, v + group * kLanes);
+    gatherGroup<kWidth>(record, pack::kAttributes / pack::kGroup + group, v + group * kLanes);
   }
   float* into = attributes;
   for (int j = 0; j < components; ++j, into += stride) {
     const f32x8 value = b[0] * v[3 * j] + b[1] * v[3 * j + 1] + b[2] * v[3 * j + 2];
-    store(into, valid ? value : none);
+    store(into, split::select<kWidth>(valid, value, none));
   }
 }
 
@@ -649,8 +689,11 @@ void streamStagedRowSse2(std::uint32_t* const* planes, int count, const std::uin
 void streamStagedRowAvx2(std::uint32_t* const* planes, int count, const std::uint32_t* stage, std::size_t stride,
                          std::size_t rowStart, int n);
 
-template <typename Real, bool kAvx2>
+// kWidth: the widest vector register the caller's target has, in bytes (16 SSE2, 32 AVX2, 64
+// AVX-512), for the comparisons and selects (core/split_vectors.h).
+template <typename Real, std::size_t kWidth>
 RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, const TileJob& job) {
+  constexpr bool kAvx2 = kWidth >= 32;
   using V = typename Lanes<Real>::V;
   using M = typename Lanes<Real>::M;
   constexpr int kPixels = kTileSize * kTileSize + kLanes;  // + a chunk of slack past the end
@@ -685,7 +728,8 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         keyOfColumn[column] = key0 + keyX * dx;
       }
     }
-    forEachCoveredChunk<kAvx2>(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, int column, const i32x8& mask) {
+    const u32x8 position = split::splat<kWidth, u32x8>(std::uint32_t(n));  // built once, not per chunk
+    forEachCoveredChunk<kAvx2, kWidth>(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, int column, const i32x8& mask) {
       V z;
       if constexpr (kAvx2) {
         z = keyOfColumn[column] + keyY * Real(y - anchorY);
@@ -695,12 +739,12 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
       std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
       const V old = load<V>(nearestAt);
-      const M nearer = maskAs<M>(mask) & (z > old);
+      const M nearer = maskAs<M>(mask) & split::greater<kWidth>(z, old);
       const i32x8 update = mask32(nearer);
       // Branch-free: a chunk that changes nothing stores what it loaded.
-      store(nearestAt, nearer ? z : old);
+      store(nearestAt, split::select<kWidth>(nearer, z, old));
       const u32x8 w = load<u32x8>(winnerAt);
-      store(winnerAt, update ? (u32x8{} + std::uint32_t(n)) : w);
+      store(winnerAt, split::select<kWidth>(update, position, w));
     });
   }
 
@@ -714,12 +758,12 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   // Marking: a chunk that is all the last chunk's final winner is skipped; the others mark
   // all eight lanes without a branch, an empty pixel (kEmpty) marking the sink slot[job.count].
   slot.assign(job.count + 1, -1);
-  const u32x8 sink = u32x8{} + std::uint32_t(job.count);
+  const u32x8 sink = split::splat<kWidth, u32x8>(std::uint32_t(job.count));
   std::uint32_t last = kEmpty;
   for (int i = 0; i < kTileSize * kTileSize; i += kLanes) {
     const u32x8 w = load<u32x8>(winner + i);
-    if (!anyOf<kAvx2>(w != last)) continue;
-    const u32x8 marked = w < sink ? w : sink;
+    if (!anyOf<kAvx2>(split::notEqual<kWidth>(w, last))) continue;
+    const u32x8 marked = split::select<kWidth>(split::less<kWidth>(w, sink), w, sink);
     for (int k = 0; k < kLanes; ++k) slot[marked[k]] = 0;
     last = w[kLanes - 1];
   }
@@ -755,16 +799,15 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   const bool diagnostics = out.edgeDistance != nullptr;
   // Staging rows: id, b0..b2, depth, the four diagnostics, then the attribute components.
   constexpr int kFixedPlanes = 9, kStride = kTileSize + kLanes;
-  std::vector<std::uint32_t, LineAllocator<std::uint32_t>> stage(std::size_t(kFixedPlanes + components) * kStride);
-  std::vector<std::uint32_t*> planes = {out.id,
-                                        reinterpret_cast<std::uint32_t*>(out.bary[0]),
-                                        reinterpret_cast<std::uint32_t*>(out.bary[1]),
-                                        reinterpret_cast<std::uint32_t*>(out.bary[2]),
-                                        reinterpret_cast<std::uint32_t*>(out.depth),
-                                        reinterpret_cast<std::uint32_t*>(out.baryBound),
-                                        reinterpret_cast<std::uint32_t*>(out.depthBound),
-                                        reinterpret_cast<std::uint32_t*>(out.edgeDistance),
-                                        reinterpret_cast<std::uint32_t*>(out.depthTie)};
+  // Per thread, reused from tile to tile like the arrays above: allocating and freeing them
+  // per tile was about 2% of the samples at 100k triangles (free, and zeroing the rows).
+  thread_local std::vector<std::uint32_t, LineAllocator<std::uint32_t>> stage;
+  thread_local std::vector<std::uint32_t*> planes;
+  stage.resize(std::size_t(kFixedPlanes + components) * kStride);
+  planes.assign({out.id, reinterpret_cast<std::uint32_t*>(out.bary[0]), reinterpret_cast<std::uint32_t*>(out.bary[1]),
+                 reinterpret_cast<std::uint32_t*>(out.bary[2]), reinterpret_cast<std::uint32_t*>(out.depth),
+                 reinterpret_cast<std::uint32_t*>(out.baryBound), reinterpret_cast<std::uint32_t*>(out.depthBound),
+                 reinterpret_cast<std::uint32_t*>(out.edgeDistance), reinterpret_cast<std::uint32_t*>(out.depthTie)});
   for (const Outputs::Attribute& a : out.attributes) {
     for (int j = 0; j < a.components; ++j) planes.push_back(reinterpret_cast<std::uint32_t*>(a.out[j]));
   }
@@ -775,7 +818,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
     for (int x = job.x0; x <= job.x1; x += kLanes) {
       const int lanes = std::min(kLanes, job.x1 - x + 1);
       const u32x8 w = load<u32x8>(winner + (y - job.y0) * kTileSize + (x - job.x0));
-      const i32x8 valid = (iota32() < lanes) & (w != kEmpty);
+      const i32x8 valid = split::less<kWidth>(iota32(), lanes) & split::notEqual<kWidth>(w, kEmpty);
       const unsigned column = 1u << ((x - job.x0) / kLanes);
       if (anyOf<kAvx2>(valid)) {
         stagedEmpty &= ~column;
@@ -789,42 +832,42 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       float* attributesAt = reinterpret_cast<float*>(at + kFixedPlanes * kStride);
       u32x8 id;
       f32x8 baryBound, depthBound;
-      if (lanes == kLanes && !anyOf<kAvx2>(w != w[0]) && w[0] != kEmpty) {  // one winner: no blending
+      if (lanes == kLanes && !anyOf<kAvx2>(split::notEqual<kWidth>(w, w[0])) && w[0] != kEmpty) {  // one winner: no blending
         const ShadeSetup<Real>& s = shadeOf(w[0]);
-        resolveLanes<false>(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride, valid);
-        id = u32x8{} + s.triangle;
-        baryBound = f32x8{} + s.baryBound;
-        depthBound = f32x8{} + s.depthBound;
-      } else if (gathered && moreRunsThan<kAvx2>(w, kGatherAbove<kAvx2>)) {
+        resolveLanes<false, kWidth>(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride, valid);
+        id = split::splat<kWidth, u32x8>(s.triangle);
+        baryBound = split::splat<kWidth, f32x8>(s.baryBound);
+        depthBound = split::splat<kWidth, f32x8>(s.depthBound);
+      } else if (gathered && moreRunsThan<kWidth>(w, kGatherAbove)) {
         if constexpr (sizeof(Real) == 4) {
           // Lane k's record is at its winner's position in the bins, an empty lane's after
           // the last. A lookup per lane through slot[] was 5% of the instructions at 100k
           // triangles; making the eight addresses in vector lanes and storing them measured
           // slower than this loop.
-          const u32x8 position = valid ? w : u32x8{} + std::uint32_t(job.count);
+          const u32x8 position = split::select<kWidth>(valid, w, split::splat<kWidth, u32x8>(std::uint32_t(job.count)));
           const float* record[kLanes];
           for (int k = 0; k < kLanes; ++k) record[k] = packs.data() + std::size_t(position[k]) * packStride;
-          resolveGathered(in, out, record, x, y, valid, r, id, baryBound, depthBound, attributesAt, kStride);
+          resolveGathered<kWidth>(in, out, record, x, y, valid, r, id, baryBound, depthBound, attributesAt, kStride);
         }
       } else {
-        id = u32x8{} + channels::kNoTriangle;
+        id = split::splat<kWidth, u32x8>(channels::kNoTriangle);
         baryBound = depthBound = f32x8{};
         for (int k = 0; k < components; ++k) store(attributesAt + kStride * k, f32x8{});
         unsigned remaining = laneBits<kAvx2>(valid);
         while (remaining != 0) {
           const std::uint32_t n = w[__builtin_ctz(remaining)];
-          const i32x8 mine = valid & (w == n);
+          const i32x8 mine = valid & split::equal<kWidth>(w, n);
           remaining &= ~laneBits<kAvx2>(mine);
           Resolved own{};
           const ShadeSetup<Real>& s = shadeOf(n);
-          resolveLanes<true>(in, out, job.bins[n], s, x, y, own, attributesAt, kStride, mine);
-          id = mine ? u32x8{} + s.triangle : id;
-          for (int i = 0; i < 3; ++i) r.bary[i] = mine ? own.bary[i] : r.bary[i];
-          r.depth = mine ? own.depth : r.depth;
-          r.edgeDistance = mine ? own.edgeDistance : r.edgeDistance;
-          r.depthTie = mine ? own.depthTie : r.depthTie;
-          baryBound = mine ? f32x8{} + s.baryBound : baryBound;
-          depthBound = mine ? f32x8{} + s.depthBound : depthBound;
+          resolveLanes<true, kWidth>(in, out, job.bins[n], s, x, y, own, attributesAt, kStride, mine);
+          id = split::select<kWidth>(mine, split::splat<kWidth, u32x8>(s.triangle), id);
+          for (int i = 0; i < 3; ++i) r.bary[i] = split::select<kWidth>(mine, own.bary[i], r.bary[i]);
+          r.depth = split::select<kWidth>(mine, own.depth, r.depth);
+          r.edgeDistance = split::select<kWidth>(mine, own.edgeDistance, r.edgeDistance);
+          r.depthTie = split::select<kWidth>(mine, own.depthTie, r.depthTie);
+          baryBound = split::select<kWidth>(mine, split::splat<kWidth, f32x8>(s.baryBound), baryBound);
+          depthBound = split::select<kWidth>(mine, split::splat<kWidth, f32x8>(s.depthBound), depthBound);
         }
       }
       store(at, id);

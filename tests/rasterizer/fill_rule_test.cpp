@@ -28,10 +28,11 @@ Tri tri(double x0, double y0, double x1, double y1, double x2, double y2) {
 
 // Counts per pixel centre from the kernels' coverage code, run in int64 lanes and in int32
 // lanes (exact here: the triangles span at most 40 pixels), each stepping in vectors (the AVX2
-// and AVX-512 kernels) and in scalars (SSE2); all four must give the same pixels, and every
-// chunk its column.
+// and AVX-512 kernels) and in scalars (SSE2), and with its comparisons on vectors split in
+// 16-byte halves (as in the SSE2 build, core/split_vectors.h) and on whole vectors; all six must
+// give the same pixels, and every chunk its column.
 std::vector<int> coverageCounts(const std::vector<Tri>& tris) {
-  std::vector<std::vector<int>> counts(4, std::vector<int>(kSize * kSize, 0));
+  std::vector<std::vector<int>> counts(6, std::vector<int>(kSize * kSize, 0));
   const auto count = [](std::vector<int>& into) {
     return [&into](int x, int y, int column, const kernel::i32x8& mask) {
       EXPECT_EQ(x, column * kernel::kLanes);
@@ -43,14 +44,18 @@ std::vector<int> coverageCounts(const std::vector<Tri>& tris) {
   for (const Tri& t : tris) {
     EdgeFunctions e;
     if (!makeEdgeFunctions(t.x, t.y, e)) continue;
-    kernel::coverRows<std::int64_t, true>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[0]));
-    kernel::coverRows<std::int32_t, true>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[1]));
-    kernel::coverRows<std::int64_t, false>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[2]));
-    kernel::coverRows<std::int32_t, false>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[3]));
+    kernel::coverRows<std::int64_t, true, 64>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[0]));
+    kernel::coverRows<std::int32_t, true, 64>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[1]));
+    kernel::coverRows<std::int64_t, false, 16>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[2]));
+    kernel::coverRows<std::int32_t, false, 16>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[3]));
+    kernel::coverRows<std::int64_t, true, 16>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[4]));
+    kernel::coverRows<std::int32_t, false, 64>(e, kBits, 0, 0, kSize - 1, kSize - 1, count(counts[5]));
   }
   EXPECT_EQ(counts[0], counts[1]) << "int32 and int64 lanes cover different pixels";
   EXPECT_EQ(counts[0], counts[2]) << "vector and scalar steps cover different pixels (int64 lanes)";
   EXPECT_EQ(counts[0], counts[3]) << "vector and scalar steps cover different pixels (int32 lanes)";
+  EXPECT_EQ(counts[0], counts[4]) << "split and whole comparisons cover different pixels (vector steps)";
+  EXPECT_EQ(counts[0], counts[5]) << "split and whole comparisons cover different pixels (scalar steps)";
   return counts[0];
 }
 
