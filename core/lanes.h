@@ -14,6 +14,8 @@
 #include <cstring>
 #include <glm/vec3.hpp>
 
+#include "core/split_vectors.h"
+
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -38,14 +40,27 @@ RC_LANES_INLINE To bitsAs(const From& from) {
 
 // fabs, and std::max and std::min as the standard defines them (the first argument unless the
 // second is larger, or smaller), so that every lane picks what the scalar code picks.
+// kWidth, here and in select: the widest register of the caller's target, in bytes. Code
+// compiled for the SSE2 baseline passes 16, so that its four-lane comparisons and selects run
+// on two-lane halves; left at 32, GCC lowers them lane by lane, with a branch per lane
+// (core/split_vectors.h). The double overloads take it too, so that code written once for both
+// can pass it.
 RC_LANES_INLINE double absOf(double v) { return std::fabs(v); }
+template <std::size_t kWidth = 32>
 RC_LANES_INLINE double stdMax(double a, double b) { return std::max(a, b); }
+template <std::size_t kWidth = 32>
 RC_LANES_INLINE double stdMin(double a, double b) { return std::min(a, b); }
 RC_LANES_INLINE f64x4 absOf(const f64x4& v) {
   return bitsAs<f64x4>(bitsAs<i64x4>(v) & std::int64_t(0x7FFFFFFFFFFFFFFF));
 }
-RC_LANES_INLINE f64x4 stdMax(const f64x4& a, const f64x4& b) { return a < b ? b : a; }
-RC_LANES_INLINE f64x4 stdMin(const f64x4& a, const f64x4& b) { return b < a ? b : a; }
+template <std::size_t kWidth = 32>
+RC_LANES_INLINE f64x4 stdMax(const f64x4& a, const f64x4& b) {
+  return split::select<kWidth>(split::less<kWidth>(a, b), b, a);
+}
+template <std::size_t kWidth = 32>
+RC_LANES_INLINE f64x4 stdMin(const f64x4& a, const f64x4& b) {
+  return split::select<kWidth>(split::less<kWidth>(b, a), b, a);
+}
 
 // The correctly rounded square root (IEEE 754), so every lane equals std::sqrt of it.
 RC_LANES_INLINE double sqrtOf(double v) { return std::sqrt(v); }
@@ -58,8 +73,12 @@ RC_LANES_INLINE f64x4 sqrtOf(const f64x4& v) {
 }
 
 // Selects a where the mask (a comparison's result) is set, b elsewhere.
+template <std::size_t kWidth = 32>
 RC_LANES_INLINE double select(bool mask, double a, double b) { return mask ? a : b; }
-RC_LANES_INLINE f64x4 select(const i64x4& mask, const f64x4& a, const f64x4& b) { return mask ? a : b; }
+template <std::size_t kWidth = 32>
+RC_LANES_INLINE f64x4 select(const i64x4& mask, const f64x4& a, const f64x4& b) {
+  return split::select<kWidth>(mask, a, b);
+}
 
 // A 3-vector of doubles or of lanes, with glm's operations in glm's order: dot is
 // (x x' + y y') + z z', cross is (y z' - y' z, z x' - z' x, x y' - x' y).

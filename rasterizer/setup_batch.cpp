@@ -30,20 +30,25 @@ using lanes::i32x4;
 // roundToInteger).
 constexpr double kMagic = 0x1.8p52;
 
+// Comparisons and selects go through core/split_vectors.h with kWidth, the target's widest
+// register in bytes: in the SSE2 build (16) a four-lane double or int64 vector is two
+// registers wide, and GCC would lower them lane by lane, with a branch per lane in a select.
 RC_BATCH_INLINE f64x4 roundToInteger(const f64x4& x) { return (x + kMagic) - kMagic; }
 // floor and ceil of a multiple of a power of two below 2^51 (a shifted integer): exact.
+template <std::size_t kWidth>
 RC_BATCH_INLINE f64x4 floorOf(const f64x4& x) {
   const f64x4 r = roundToInteger(x);
-  return r > x ? r - 1.0 : r;
+  return split::select<kWidth>(split::greater<kWidth>(r, x), r - 1.0, r);
 }
+template <std::size_t kWidth>
 RC_BATCH_INLINE f64x4 ceilOf(const f64x4& x) {
   const f64x4 r = roundToInteger(x);
-  return r < x ? r + 1.0 : r;
+  return split::select<kWidth>(split::less<kWidth>(r, x), r + 1.0, r);
 }
-RC_BATCH_INLINE f64x4 minOf(const f64x4& a, const f64x4& b) { return a < b ? a : b; }
-RC_BATCH_INLINE f64x4 maxOf(const f64x4& a, const f64x4& b) { return a > b ? a : b; }
-RC_BATCH_INLINE i64x4 minOf(const i64x4& a, const i64x4& b) { return a < b ? a : b; }
-RC_BATCH_INLINE i64x4 maxOf(const i64x4& a, const i64x4& b) { return a > b ? a : b; }
+template <std::size_t kWidth, typename V>
+RC_BATCH_INLINE V minOf(const V& a, const V& b) { return split::select<kWidth>(split::less<kWidth>(a, b), a, b); }
+template <std::size_t kWidth, typename V>
+RC_BATCH_INLINE V maxOf(const V& a, const V& b) { return split::select<kWidth>(split::greater<kWidth>(a, b), a, b); }
 // Integral doubles within int32 (the caller zeroes lanes it will not use) to int32.
 RC_BATCH_INLINE i32x4 toInt32(const f64x4& v) { return __builtin_convertvector(v, i32x4); }
 
@@ -59,7 +64,7 @@ RC_BATCH_INLINE void gatherVertices(const glm::uvec3 tris[kLanes], const glm::dv
   }
 }
 
-template <typename Real>
+template <std::size_t kWidth, typename Real>
 RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                         const glm::dvec2* raster, const SetupContext& ctx,
                                         CoverageSetup<Real> c[kLanes]) {
@@ -80,50 +85,51 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
     yr[i] = sy - kMagic;
   }
   const i64x4 area = (xf[1] - xf[0]) * (yf[2] - yf[0]) - (yf[1] - yf[0]) * (xf[2] - xf[0]);
-  i64x4 accept = area != 0;
-  if (ctx.cullBackFaces) accept &= area <= 0;
+  i64x4 accept = split::notEqual<kWidth>(area, std::int64_t(0));
+  if (ctx.cullBackFaces) accept &= split::lessEqual<kWidth>(area, std::int64_t(0));
   // The bounding box of pixel centres: ceil / floor of (coordinate - half) / 2^bits.
   const double half = 0.5 * scale;
-  const f64x4 minXr = minOf(xr[0], minOf(xr[1], xr[2])), maxXr = maxOf(xr[0], maxOf(xr[1], xr[2]));
-  const f64x4 minYr = minOf(yr[0], minOf(yr[1], yr[2])), maxYr = maxOf(yr[0], maxOf(yr[1], yr[2]));
-  const f64x4 minX = maxOf(f64x4{}, ceilOf((minXr - half) * invScale));
-  const f64x4 minY = maxOf(f64x4{}, ceilOf((minYr - half) * invScale));
-  const f64x4 maxX = minOf(f64x4{} + double(ctx.width - 1), floorOf((maxXr - half) * invScale));
-  const f64x4 maxY = minOf(f64x4{} + double(ctx.height - 1), floorOf((maxYr - half) * invScale));
-  accept &= (minX <= maxX) & (minY <= maxY);
+  const f64x4 minXr = minOf<kWidth>(xr[0], minOf<kWidth>(xr[1], xr[2])), maxXr = maxOf<kWidth>(xr[0], maxOf<kWidth>(xr[1], xr[2]));
+  const f64x4 minYr = minOf<kWidth>(yr[0], minOf<kWidth>(yr[1], yr[2])), maxYr = maxOf<kWidth>(yr[0], maxOf<kWidth>(yr[1], yr[2]));
+  const f64x4 minX = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>((minXr - half) * invScale));
+  const f64x4 minY = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>((minYr - half) * invScale));
+  const f64x4 maxX = minOf<kWidth>(f64x4{} + double(ctx.width - 1), floorOf<kWidth>((maxXr - half) * invScale));
+  const f64x4 maxY = minOf<kWidth>(f64x4{} + double(ctx.height - 1), floorOf<kWidth>((maxYr - half) * invScale));
+  accept &= split::lessEqual<kWidth>(minX, maxX) & split::lessEqual<kWidth>(minY, maxY);
   if (!(accept[0] | accept[1] | accept[2] | accept[3])) return 0u;
 
   // Edge functions (coverage.h's makeEdgeFunctions), sign-normalised by the area's sign.
-  const i64x4 positive = area > 0;
+  const i64x4 positive = split::greater<kWidth>(area, std::int64_t(0));
   f64x4 ea[3], eb[3];
   i64x4 flags = positive & std::int64_t(CoverageSetup<Real>::kPositive);
   for (int i = 0; i < 3; ++i) {
     const int from = (i + 1) % 3, to = (i + 2) % 3;
     const f64x4 a = yr[from] - yr[to], b = xr[to] - xr[from];
-    ea[i] = positive ? a : -a;
-    eb[i] = positive ? b : -b;
-    const i64x4 topLeft = (ea[i] > 0.0) | ((ea[i] == 0.0) & (eb[i] > 0.0));
+    ea[i] = split::select<kWidth>(positive, a, -a);
+    eb[i] = split::select<kWidth>(positive, b, -b);
+    const i64x4 topLeft = split::greater<kWidth>(ea[i], 0.0) |
+                          (split::equal<kWidth>(ea[i], 0.0) & split::greater<kWidth>(eb[i], 0.0));
     flags |= ~topLeft & std::int64_t(CoverageSetup<Real>::kNotTopLeft << i);
   }
   // The narrow test, spans clamped to 2^30 so that no product overflows (a span that large
   // already fails it).
   const i64x4 limit = i64x4{} + (std::int64_t(1) << 30), one = i64x4{} + (std::int64_t(1) << bits);
-  const i64x4 spanX = maxOf(xf[0], maxOf(xf[1], xf[2])) - minOf(xf[0], minOf(xf[1], xf[2]));
-  const i64x4 spanY = maxOf(yf[0], maxOf(yf[1], yf[2])) - minOf(yf[0], minOf(yf[1], yf[2]));
-  const i64x4 sx = minOf(spanX, limit), sy = minOf(spanY, limit);
-  const i64x4 narrow = (spanX < limit) & (spanY < limit) &
-                       (sy * (sx + 9 * one) + sx * (sy + one) + 1 < (std::int64_t(1) << 31));
+  const i64x4 spanX = maxOf<kWidth>(xf[0], maxOf<kWidth>(xf[1], xf[2])) - minOf<kWidth>(xf[0], minOf<kWidth>(xf[1], xf[2]));
+  const i64x4 spanY = maxOf<kWidth>(yf[0], maxOf<kWidth>(yf[1], yf[2])) - minOf<kWidth>(yf[0], minOf<kWidth>(yf[1], yf[2]));
+  const i64x4 sx = minOf<kWidth>(spanX, limit), sy = minOf<kWidth>(spanY, limit);
+  const i64x4 narrow = split::less<kWidth>(spanX, limit) & split::less<kWidth>(spanY, limit) &
+                       split::less<kWidth>(sy * (sx + 9 * one) + sx * (sy + one) + 1, std::int64_t(1) << 31);
   flags |= narrow & std::int64_t(CoverageSetup<Real>::kNarrow);
 
   // Anchor (CoverageSetup::anchorX, anchorY) and the depth key plane, as setupCoverage.
-  const f64x4 anchorX = minX + floorOf((maxX - minX) * 0.5), anchorY = minY + floorOf((maxY - minY) * 0.5);
+  const f64x4 anchorX = minX + floorOf<kWidth>((maxX - minX) * 0.5), anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
   const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
-  accept &= an.area != 0.0;
+  accept &= split::notEqual<kWidth>(an.area, 0.0);
   const formulas::KeyPlane<f64x4> key = formulas::keyPlaneOf(an, ctx);
 
   // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
-  const auto ints = [&](const f64x4& v) { return toInt32(accept ? v : f64x4{}); };
+  const auto ints = [&](const f64x4& v) { return toInt32(split::select<kWidth>(accept, v, f64x4{})); };
   const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
   i32x4 xi[3], yi[3];
   for (int i = 0; i < 3; ++i) xi[i] = ints(xr[i]), yi[i] = ints(yr[i]);
@@ -140,7 +146,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   return accepted;
 }
 
-template <typename Real>
+template <std::size_t kWidth, typename Real>
 RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                                  const SetupContext& ctx, const CoverageSetup<Real>* const c[kLanes],
                                  ShadeSetup<Real>* const s[kLanes]) {
@@ -154,13 +160,13 @@ RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4
   const f64x4 ax = f64x4{double(c[0]->anchorX()), double(c[1]->anchorX()), double(c[2]->anchorX()), double(c[3]->anchorX())} + 0.5;
   const f64x4 ay = f64x4{double(c[0]->anchorY()), double(c[1]->anchorY()), double(c[2]->anchorY()), double(c[3]->anchorY())} + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
-  const formulas::Planes<f64x4> p = formulas::planesOf(an);
+  const formulas::Planes<f64x4> p = formulas::planesOf<kWidth>(an);
   f64x4 R;
   for (int k = 0; k < kLanes; ++k) {
     const CoverageSetup<Real>& b = *c[k];
     R[k] = std::max({b.anchorX() - b.minX, b.maxX - b.anchorX(), b.anchorY() - b.minY, b.maxY - b.anchorY(), 0}) + 0.0;
   }
-  const formulas::Bounds<f64x4> bounds = formulas::boundsOf(p, R, rx, ry, cx, cy, w, ctx, false);
+  const formulas::Bounds<f64x4> bounds = formulas::boundsOf<kWidth>(p, R, rx, ry, cx, cy, w, ctx, false);
 
   for (int k = 0; k < kLanes; ++k) {
     ShadeSetup<Real>& out = *s[k];
@@ -181,57 +187,57 @@ RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4
 
 unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<16>(tris, clip, raster, ctx, c);
 }
 unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<16>(tris, clip, raster, ctx, c);
 }
 __attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                                            const glm::dvec2* raster, const SetupContext& ctx,
                                                            CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<32>(tris, clip, raster, ctx, c);
 }
 __attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                                            const glm::dvec2* raster, const SetupContext& ctx,
                                                            CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<32>(tris, clip, raster, ctx, c);
 }
 
 
 void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<float>* const c[kLanes],
                     ShadeSetup<float>* const s[kLanes]) {
-  setupShade4(tris, clip, raster, ctx, c, s);
+  setupShade4<16>(tris, clip, raster, ctx, c, s);
 }
 void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
                     ShadeSetup<double>* const s[kLanes]) {
-  setupShade4(tris, clip, raster, ctx, c, s);
+  setupShade4<16>(tris, clip, raster, ctx, c, s);
 }
 __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                                     const glm::dvec2* raster, const SetupContext& ctx,
                                                     const CoverageSetup<float>* const c[kLanes],
                                                     ShadeSetup<float>* const s[kLanes]) {
-  setupShade4(tris, clip, raster, ctx, c, s);
+  setupShade4<32>(tris, clip, raster, ctx, c, s);
 }
 __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                                     const glm::dvec2* raster, const SetupContext& ctx,
                                                     const CoverageSetup<double>* const c[kLanes],
                                                     ShadeSetup<double>* const s[kLanes]) {
-  setupShade4(tris, clip, raster, ctx, c, s);
+  setupShade4<32>(tris, clip, raster, ctx, c, s);
 }
 
 #define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
 RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                              const glm::dvec2* raster, const SetupContext& ctx,
                                              CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<64>(tris, clip, raster, ctx, c);
 }
 RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                              const glm::dvec2* raster, const SetupContext& ctx,
                                              CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4(tris, clip, raster, ctx, c);
+  return setupCoverage4<64>(tris, clip, raster, ctx, c);
 }
 
 }  // namespace rc::batch

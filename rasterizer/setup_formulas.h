@@ -31,12 +31,16 @@ using lanes::stdMin;
 
 // |(lx, ly)| from its squared length: sqrt of the sum of squares (hypot costs more than the
 // rest of the set-up), unless a square overflowed or underflowed.
+// kWidth, here and below: the caller's widest register in bytes (core/lanes.h's stdMax).
+template <std::size_t kWidth>
 RC_FORMULA_INLINE double lengthOf(double squares, double lx, double ly) {
   return std::isnormal(squares) ? std::sqrt(squares) : std::hypot(lx, ly);
 }
+template <std::size_t kWidth>
 RC_FORMULA_INLINE f64x4 lengthOf(const f64x4& squares, const f64x4& lx, const f64x4& ly) {
   f64x4 length = lanes::sqrtOf(squares);
-  const i64x4 normal = (squares >= std::numeric_limits<double>::min()) & (squares <= std::numeric_limits<double>::max());
+  const i64x4 normal = split::greaterEqual<kWidth>(squares, std::numeric_limits<double>::min()) &
+                       split::lessEqual<kWidth>(squares, std::numeric_limits<double>::max());
   if (!(normal[0] & normal[1] & normal[2] & normal[3])) {
     for (int k = 0; k < 4; ++k) {
       if (!normal[k]) length[k] = std::hypot(lx[k], ly[k]);
@@ -106,7 +110,7 @@ struct Planes {
   V l0[3], lx[3], ly[3], height[3];
 };
 
-template <typename V>
+template <std::size_t kWidth = 32, typename V>
 RC_FORMULA_INLINE Planes<V> planesOf(const Anchored<V>& a) {
   Planes<V> p;
   for (int i = 0; i < 3; ++i) {
@@ -117,7 +121,7 @@ RC_FORMULA_INLINE Planes<V> planesOf(const Anchored<V>& a) {
   }
   for (int i = 0; i < 3; ++i) {
     const V squares = p.lx[i] * p.lx[i] + p.ly[i] * p.ly[i];
-    p.height[i] = 1.0 / lengthOf(squares, p.lx[i], p.ly[i]);
+    p.height[i] = 1.0 / lengthOf<kWidth>(squares, p.lx[i], p.ly[i]);
   }
   return p;
 }
@@ -133,26 +137,27 @@ struct Bounds {
 // largest offset from the anchor. delta bounds how far the double transform may have moved a
 // vertex, in pixels; l_i moves by at most |grad l_i| delta per unit of barycentric weight on
 // each of the three vertices. (rx, ry): raster positions; (cx, cy, w): clip positions.
-template <typename V>
+template <std::size_t kWidth = 32, typename V>
 RC_FORMULA_INLINE Bounds<V> boundsOf(const Planes<V>& p, const V& R, const V rx[3], const V ry[3], const V cx[3],
                                      const V cy[3], const V w[3], const SetupContext& ctx, bool clipped) {
   const double u = ctx.unitRoundoff;
   V epsL{}, gradient{}, lMax{};
   for (int i = 0; i < 3; ++i) {
     const V g = absOf(p.lx[i]) + absOf(p.ly[i]);
-    epsL = stdMax(epsL, 4.0 * u * (absOf(p.l0[i]) + g * R));
-    gradient = stdMax(gradient, g);
-    lMax = stdMax(lMax, absOf(p.l0[i]) + g * R);
+    epsL = stdMax<kWidth>(epsL, 4.0 * u * (absOf(p.l0[i]) + g * R));
+    gradient = stdMax<kWidth>(gradient, g);
+    lMax = stdMax<kWidth>(lMax, absOf(p.l0[i]) + g * R);
   }
-  const V wMin = stdMin(stdMin(w[0], w[1]), w[2]), wMax = stdMax(stdMax(w[0], w[1]), w[2]);
+  const V wMin = stdMin<kWidth>(stdMin<kWidth>(w[0], w[1]), w[2]);
+  const V wMax = stdMax<kWidth>(stdMax<kWidth>(w[0], w[1]), w[2]);
   const V rho = wMax / wMin;
   V delta{};
   for (int i = 0; i < 3; ++i) {
-    const V ndc = stdMax(absOf(cx[i]), absOf(cy[i])) / w[i];
-    delta = stdMax(delta, 0.5 * std::max(ctx.width, ctx.height) * ctx.clipError * (1.0 + ndc) / w[i]);
+    const V ndc = stdMax<kWidth>(absOf(cx[i]), absOf(cy[i])) / w[i];
+    delta = stdMax<kWidth>(delta, 0.5 * std::max(ctx.width, ctx.height) * ctx.clipError * (1.0 + ndc) / w[i]);
   }
   V largest = absOf(rx[0]);
-  for (const V& v : {rx[1], rx[2], ry[0], ry[1], ry[2]}) largest = stdMax(largest, absOf(v));
+  for (const V& v : {rx[1], rx[2], ry[0], ry[1], ry[2]}) largest = stdMax<kWidth>(largest, absOf(v));
   delta += 0x1p-50 * (largest + 1.0);
   epsL += 3.0 * delta * gradient * (1.0 + lMax);
   // Perspective division: |db_i| <= rho (1 + 3 b_i) max|dl| <= 4 rho epsL (l within [0, 1]
@@ -160,7 +165,7 @@ RC_FORMULA_INLINE Bounds<V> boundsOf(const Planes<V>& p, const V& R, const V rx[
   // clipped sub-triangle's 3x3 map (columns summing to 1, entries in [0, 1]) at most triples
   // that and adds 4 u; the float output adds half an ulp of values below 2 (a barycentric
   // leaves [0, 1] only by the snapping band), 2^-23 relative for depth.
-  const V lFactor = stdMax(V{} + 1.0, lMax);
+  const V lFactor = stdMax<kWidth>(V{} + 1.0, lMax);
   const V perspective = 4.0 * rho * epsL * lFactor + 6.0 * u;
   Bounds<V> b;
   b.bary = perspective;

@@ -52,7 +52,8 @@ struct TriangleFrame {
   V depthBoundT;  // |e2| |T| |e1| / |e2 . Q|: the depth bound's part without det
 };
 
-template <typename V>
+// kWidth: the caller's widest register in bytes, for the comparisons and selects (core/lanes.h).
+template <std::size_t kWidth = 32, typename V>
 RC_LANES_INLINE TriangleFrame<V> triangleFrame(const lanes::Vec3<V>& o, const lanes::Vec3<V>& v0,
                                                const lanes::Vec3<V>& v1, const lanes::Vec3<V>& v2) {
   using lanes::length;
@@ -63,7 +64,7 @@ RC_LANES_INLINE TriangleFrame<V> triangleFrame(const lanes::Vec3<V>& o, const la
   f.Q = lanes::cross(f.T, f.e1);
   f.tNumerator = lanes::dot(f.e2, f.Q);
   // std::max({a, b, c}) keeps the first of equal largest values, as stdMax does.
-  f.L = lanes::stdMax(lanes::stdMax(length(f.e1), length(f.e2)), length(f.e2 - f.e1));
+  f.L = lanes::stdMax<kWidth>(lanes::stdMax<kWidth>(length(f.e1), length(f.e2)), length(f.e2 - f.e1));
   f.lengthT = length(f.T);
   f.lengthE1 = length(f.e1);
   f.lengthE2 = length(f.e2);
@@ -80,18 +81,21 @@ struct LaneHit {
   V t, baryBound, depthBound;
 };
 
+template <std::size_t kWidth>
 RC_LANES_INLINE bool finiteNonZero(double det) { return det != 0.0 && std::isfinite(det); }
+template <std::size_t kWidth>
 RC_LANES_INLINE lanes::i64x4 finiteNonZero(const lanes::f64x4& det) {
-  return (det != 0.0) & (lanes::absOf(det) <= std::numeric_limits<double>::max());
+  return split::notEqual<kWidth>(det, 0.0) &
+         split::lessEqual<kWidth>(lanes::absOf(det), std::numeric_limits<double>::max());
 }
 
-template <typename V>
+template <std::size_t kWidth = 32, typename V>
 RC_LANES_INLINE auto intersectRay(const TriangleFrame<V>& f, const lanes::Vec3<V>& d) {
   constexpr double u = 0x1p-53;
   const lanes::Vec3<V> P = lanes::cross(d, f.e2);
   const V det = lanes::dot(f.e1, P);
-  const auto valid = finiteNonZero(det);
-  const V safeDet = lanes::select(valid, det, V{} + 1.0);  // no division by 0 in any lane
+  const auto valid = finiteNonZero<kWidth>(det);
+  const V safeDet = lanes::select<kWidth>(valid, det, V{} + 1.0);  // no division by 0 in any lane
   const V inv = 1.0 / safeDet;
   const V b1 = lanes::dot(f.T, P) * inv;
   const V b2 = lanes::dot(d, f.Q) * inv;

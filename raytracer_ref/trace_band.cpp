@@ -37,10 +37,10 @@ struct HitTriangle {
   V inPlane[3];       // length of its part in the image plane
 };
 
-template <typename V>
+template <std::size_t kWidth, typename V>
 RC_LANES_INLINE HitTriangle<V> hitTriangleOf(const Vec3<V> p[3], const Vec3<V>& origin, const Vec3<V>& forward) {
   HitTriangle<V> h;
-  h.frame = triangleFrame(origin, p[0], p[1], p[2]);
+  h.frame = triangleFrame<kWidth>(origin, p[0], p[1], p[2]);
   for (int i = 0; i < 3; ++i) {
     h.normal[i] = lanes::cross(p[(i + 1) % 3] - origin, p[(i + 2) % 3] - origin);
     h.inPlane[i] = lanes::length(h.normal[i] - lanes::dot(h.normal[i], forward) * forward);
@@ -83,6 +83,8 @@ struct Row {
 // kAvx2 only keeps the two builds' instantiations apart; everything is inlined into them.
 template <bool kAvx2>
 struct Tracer {
+  // The widest register, for the comparisons and selects (core/lanes.h, core/split_vectors.h).
+  static constexpr std::size_t kWidth = kAvx2 ? 32 : 16;
   const BandInput& in;
   const Camera& camera;
   const Mesh& mesh;
@@ -124,29 +126,30 @@ struct Tracer {
       const Vec3<f64x4> p[3] = {cornerOf(mesh, triangle, 0), cornerOf(mesh, triangle, 1),
                                 cornerOf(mesh, triangle, 2)};
       if (shared) {
-        last = hitTriangleOf(p, origin, forward);
+        last = hitTriangleOf<kWidth>(p, origin, forward);
         lastTriangle = triangle[first];
       } else {
-        each = hitTriangleOf(p, origin, forward);
+        each = hitTriangleOf<kWidth>(p, origin, forward);
         h = &each;
       }
     }
 
-    const auto hit = intersectRay(h->frame, d);
+    const auto hit = intersectRay<kWidth>(h->frame, d);
     // Parallel to the plane: no unique point; Embree's, unbounded.
     const Vec3<f64x4> embree = baryFromEmbreeUv(u, v);
     const i64x4 valid = hit.valid;
     const f64x4 infinity = lanes::splat(std::numeric_limits<double>::infinity());
-    const Vec3<f64x4> b = {lanes::select(valid, hit.b.x, embree.x), lanes::select(valid, hit.b.y, embree.y),
-                           lanes::select(valid, hit.b.z, embree.z)};
-    const f64x4 t = lanes::select(valid, hit.t, tfar);
-    const f64x4 baryBound = lanes::select(valid, hit.baryBound, infinity);
-    const f64x4 depthBound = lanes::select(valid, hit.depthBound, infinity);
+    const Vec3<f64x4> b = {lanes::select<kWidth>(valid, hit.b.x, embree.x),
+                           lanes::select<kWidth>(valid, hit.b.y, embree.y),
+                           lanes::select<kWidth>(valid, hit.b.z, embree.z)};
+    const f64x4 t = lanes::select<kWidth>(valid, hit.t, tfar);
+    const f64x4 baryBound = lanes::select<kWidth>(valid, hit.baryBound, infinity);
+    const f64x4 depthBound = lanes::select<kWidth>(valid, hit.depthBound, infinity);
     if (!in.source) {
       const Vec3<f64x4> diff = hit.b - embree;
       const i64x4 counted = valid & __builtin_convertvector(row.hit, i64x4);
-      embreeDiffSquaredMax =
-          lanes::select(counted, lanes::stdMax(embreeDiffSquaredMax, lanes::dot(diff, diff)), embreeDiffSquaredMax);
+      embreeDiffSquaredMax = lanes::select<kWidth>(
+          counted, lanes::stdMax<kWidth>(embreeDiffSquaredMax, lanes::dot(diff, diff)), embreeDiffSquaredMax);
     }
 
     const auto write = [&](int plane, const f64x4& value) __attribute__((always_inline)) {
@@ -167,10 +170,11 @@ struct Tracer {
     f64x4 nearest = infinity;
     for (int i = 0; i < 3; ++i) {
       const f64x4 length = h->inPlane[i];
-      const i64x4 positive = length > 0.0;
-      const f64x4 distance =
-          lanes::absOf(lanes::dot(d, h->normal[i])) / lanes::select(positive, length, lanes::splat(1.0)) * pixelsPerUnit;
-      nearest = lanes::select(positive & (distance < nearest), distance, nearest);  // std::min(nearest, distance)
+      const i64x4 positive = split::greater<kWidth>(length, 0.0);
+      const f64x4 distance = lanes::absOf(lanes::dot(d, h->normal[i])) /
+                             lanes::select<kWidth>(positive, length, lanes::splat(1.0)) * pixelsPerUnit;
+      // std::min(nearest, distance)
+      nearest = lanes::select<kWidth>(positive & split::less<kWidth>(distance, nearest), distance, nearest);
     }
     write(kEdgeDistancePlane, nearest);
     glm::uvec3 tris[kBlock];
