@@ -89,8 +89,10 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   if (ctx.cullBackFaces) accept &= split::lessEqual<kWidth>(area, std::int64_t(0));
   // The bounding box of pixel centres: ceil / floor of (coordinate - half) / 2^bits.
   const double half = 0.5 * scale;
-  const f64x4 minXr = minOf<kWidth>(xr[0], minOf<kWidth>(xr[1], xr[2])), maxXr = maxOf<kWidth>(xr[0], maxOf<kWidth>(xr[1], xr[2]));
-  const f64x4 minYr = minOf<kWidth>(yr[0], minOf<kWidth>(yr[1], yr[2])), maxYr = maxOf<kWidth>(yr[0], maxOf<kWidth>(yr[1], yr[2]));
+  const f64x4 minXr = minOf<kWidth>(xr[0], minOf<kWidth>(xr[1], xr[2]));
+  const f64x4 maxXr = maxOf<kWidth>(xr[0], maxOf<kWidth>(xr[1], xr[2]));
+  const f64x4 minYr = minOf<kWidth>(yr[0], minOf<kWidth>(yr[1], yr[2]));
+  const f64x4 maxYr = maxOf<kWidth>(yr[0], maxOf<kWidth>(yr[1], yr[2]));
   const f64x4 minX = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>((minXr - half) * invScale));
   const f64x4 minY = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>((minYr - half) * invScale));
   const f64x4 maxX = minOf<kWidth>(f64x4{} + double(ctx.width - 1), floorOf<kWidth>((maxXr - half) * invScale));
@@ -114,15 +116,18 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   // The narrow test, spans clamped to 2^30 so that no product overflows (a span that large
   // already fails it).
   const i64x4 limit = i64x4{} + (std::int64_t(1) << 30), one = i64x4{} + (std::int64_t(1) << bits);
-  const i64x4 spanX = maxOf<kWidth>(xf[0], maxOf<kWidth>(xf[1], xf[2])) - minOf<kWidth>(xf[0], minOf<kWidth>(xf[1], xf[2]));
-  const i64x4 spanY = maxOf<kWidth>(yf[0], maxOf<kWidth>(yf[1], yf[2])) - minOf<kWidth>(yf[0], minOf<kWidth>(yf[1], yf[2]));
+  const i64x4 spanX =
+      maxOf<kWidth>(xf[0], maxOf<kWidth>(xf[1], xf[2])) - minOf<kWidth>(xf[0], minOf<kWidth>(xf[1], xf[2]));
+  const i64x4 spanY =
+      maxOf<kWidth>(yf[0], maxOf<kWidth>(yf[1], yf[2])) - minOf<kWidth>(yf[0], minOf<kWidth>(yf[1], yf[2]));
   const i64x4 sx = minOf<kWidth>(spanX, limit), sy = minOf<kWidth>(spanY, limit);
   const i64x4 narrow = split::less<kWidth>(spanX, limit) & split::less<kWidth>(spanY, limit) &
                        split::less<kWidth>(sy * (sx + 9 * one) + sx * (sy + one) + 1, std::int64_t(1) << 31);
   flags |= narrow & std::int64_t(CoverageSetup<Real>::kNarrow);
 
   // Anchor (CoverageSetup::anchorX, anchorY) and the depth key plane, as setupCoverage.
-  const f64x4 anchorX = minX + floorOf<kWidth>((maxX - minX) * 0.5), anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
+  const f64x4 anchorX = minX + floorOf<kWidth>((maxX - minX) * 0.5);
+  const f64x4 anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
   const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
   accept &= split::notEqual<kWidth>(an.area, 0.0);

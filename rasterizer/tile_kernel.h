@@ -133,8 +133,8 @@ RC_KERNEL_INLINE bool any(const i32x8& m) {
   return (q[0] | q[1] | q[2] | q[3]) != 0;
 }
 // any() in one instruction where the caller is AVX2 or AVX-512 code (renderTile<Real, 32>
-// or <Real, 64>): vptest sets ZF when every bit is 0. The generic form goes through memory, four loads and three ORs,
-// 3 to 6% of the tiles' time. Written as asm since an AVX2 builtin cannot sit in code shared
+// or <Real, 64>): vptest sets ZF when every bit is 0. The generic form goes through memory,
+// four loads and three ORs, 3 to 6% of the tiles' time. Written as asm since an AVX2 builtin cannot sit in code shared
 // with the SSE2 build; the operand is a ymm register only once GCC has inlined it into AVX2
 // code. Clang checks the operand's size before inlining and refuses it, so a clang build (the
 // fuzzers') takes the generic forms, which give the same answers.
@@ -492,8 +492,10 @@ constexpr std::size_t kStride = kAttributes + kMaxComponents * 3;  // 48 floats
 // Four rows of four floats -> four columns (unpcklps / unpckhps / movlhps / movhlps).
 typedef float f32x4 __attribute__((vector_size(16)));
 RC_KERNEL_INLINE void transpose4(const f32x4 in[4], f32x4 out[4]) {
-  const f32x4 t0 = __builtin_shufflevector(in[0], in[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(in[0], in[1], 2, 6, 3, 7);
-  const f32x4 t2 = __builtin_shufflevector(in[2], in[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(in[2], in[3], 2, 6, 3, 7);
+  const f32x4 t0 = __builtin_shufflevector(in[0], in[1], 0, 4, 1, 5);
+  const f32x4 t1 = __builtin_shufflevector(in[0], in[1], 2, 6, 3, 7);
+  const f32x4 t2 = __builtin_shufflevector(in[2], in[3], 0, 4, 1, 5);
+  const f32x4 t3 = __builtin_shufflevector(in[2], in[3], 2, 6, 3, 7);
   out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5), out[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   out[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5), out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
@@ -649,8 +651,8 @@ RC_KERNEL_INLINE void resolveGathered(const Input<float>& in, const Outputs& out
     f32x8 h[kLanes];
     gatherGroup<kWidth>(record, 2, h);
     f32x8 edgeDistance, depthTie;
-    diagnosticsOf<kWidth>(l, h + (pack::kEdgeHeight - 16), h[pack::kKey0 - 16], h[pack::kKeyX - 16], h[pack::kKeyY - 16], dx, dy,
-                  depth, in.tieScale, edgeDistance, depthTie);
+    diagnosticsOf<kWidth>(l, h + (pack::kEdgeHeight - 16), h[pack::kKey0 - 16], h[pack::kKeyX - 16],
+                          h[pack::kKeyY - 16], dx, dy, depth, in.tieScale, edgeDistance, depthTie);
     r.edgeDistance = split::select<kWidth>(valid, edgeDistance, none);
     r.depthTie = split::select<kWidth>(valid, depthTie, none);
     baryBound = split::select<kWidth>(valid, h[pack::kBaryBound - 16], none);
@@ -832,7 +834,8 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       float* attributesAt = reinterpret_cast<float*>(at + kFixedPlanes * kStride);
       u32x8 id;
       f32x8 baryBound, depthBound;
-      if (lanes == kLanes && !anyOf<kAvx2>(split::notEqual<kWidth>(w, w[0])) && w[0] != kEmpty) {  // one winner: no blending
+      // One winner: no blending.
+      if (lanes == kLanes && !anyOf<kAvx2>(split::notEqual<kWidth>(w, w[0])) && w[0] != kEmpty) {
         const ShadeSetup<Real>& s = shadeOf(w[0]);
         resolveLanes<false, kWidth>(in, out, job.bins[w[0]], s, x, y, r, attributesAt, kStride, valid);
         id = split::splat<kWidth, u32x8>(s.triangle);

@@ -47,7 +47,8 @@ E interesting(std::mt19937& random) {
 template <typename V>
 V randomVector(std::mt19937& random) {
   V v;
-  for (std::size_t k = 0; k < sizeof(V) / sizeof(v[0]); ++k) v[k] = interesting<std::remove_cvref_t<decltype(v[0])>>(random);
+  using Element = std::remove_cvref_t<decltype(v[0])>;
+  for (std::size_t k = 0; k < sizeof(V) / sizeof(v[0]); ++k) v[k] = interesting<Element>(random);
   return v;
 }
 
