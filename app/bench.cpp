@@ -104,28 +104,34 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;
   for (const Scene& scene : scenes) {
-    step(scene.name + ": reference build and trace");
     // Steady-state frames: each renderer keeps its framebuffer (and the rasterizer its working
     // memory) from one run to the next, as a renderer drawing frame after frame does; one
     // untimed frame first faults the memory in. Neither timing includes the RGB preview.
-    std::vector<double> build, trace;
-    Framebuffer reference;
-    for (int r = 0; r < runs; ++r) {
-      long long t0 = nowNanoseconds();
-      const ReferenceTracer tracer(scene, settings.reference);
-      build.push_back(millisecondsSince(t0));
-      if (r == 0) tracer.trace(reference);
-      t0 = nowNanoseconds();
-      tracer.trace(reference);
-      trace.push_back(millisecondsSince(t0));
-    }
-    // The settings' frames are timed in rounds: each round gives every setting one untimed
-    // frame (its caches warm again after the others) and one timed frame. A slow spell of the
-    // machine (seconds long on a shared one) then falls on all settings alike instead of on
-    // all the runs of whichever setting it met, and the medians and ratios stay put.
+    //
+    // The reference's BVH builds are timed first, one after another. Then everything else is
+    // timed in rounds: each round traces the reference twice (the second trace timed) and gives
+    // every setting one untimed frame (its caches warm again after the others) and one timed
+    // frame. A slow spell of the machine (seconds long on a shared one) then falls on the
+    // reference's trace and the settings alike instead of on all the runs of whichever it met,
+    // so the medians and the ratios between them stay put. (Built in the rounds too, the BVH
+    // took 183 to 220 ms at 1M triangles instead of 157 to 161, and the ratios counting the
+    // build would have gained from it.)
+    // The settings take their turns from a different one each round (round r starts with
+    // setting r): in a fixed order, the first setting of every round, the default, had the
+    // widest spread of all at 1M triangles (docs/report-format.md).
     // The settings that write the same channels draw into one framebuffer in turn (every
     // frame writes every pixel of every plane): two framebuffers per scene, not one per setting
     // (a bench of the default scenes peaked at 2.24 GB with one each, 1.0 GB with two).
+    step(scene.name + ": reference builds");
+    std::vector<double> build, trace;
+    for (int r = 0; r < runs; ++r) {
+      const long long t0 = nowNanoseconds();
+      const ReferenceTracer built(scene, settings.reference);
+      build.push_back(millisecondsSince(t0));
+    }
+    const ReferenceTracer tracer(scene, settings.reference);
+    Framebuffer reference;
+    tracer.trace(reference);  // faults the memory in
     struct Live {
       const BenchSetting* setting;
       std::unique_ptr<Rasterizer> rasterizer;
@@ -143,7 +149,12 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     }
     for (int r = 0; r < runs; ++r) {
       step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
-      for (Live& l : live) {
+      tracer.trace(reference);
+      const long long start = nowNanoseconds();
+      tracer.trace(reference);
+      trace.push_back(millisecondsSince(start));
+      for (std::size_t k = 0; k < live.size(); ++k) {
+        Live& l = live[(k + std::size_t(r)) % live.size()];
         l.rasterizer->render(scene, *l.raster);
         const long long t0 = nowNanoseconds();
         l.rasterizer->render(scene, *l.raster);

@@ -37,12 +37,13 @@ int runBenchCommand(BenchArgs& args) {
   }
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
-  // Per scene: the reference, each round of the settings' frames, then their errors.
+  // Per scene: the reference's builds, each round of traces and frames, then the errors.
   Progress progress(int(scenes.size()) * (args.runs + 2), args.quiet);
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
 
-  std::printf("medians of %d runs, the settings timed in turn; raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
+  std::printf("medians of %d runs, the reference's trace and the settings timed in turn; "
+              "raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
               "rasterizer kernels: %s unless the setting names another; reference: Embree %s%s\n",
               args.runs, resolveThreadCount(args.settings.threads),
               kernelIsaName(resolveKernelIsa(args.settings.raster.isa)), args.settings.reference.isa.c_str(),
