@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
+#include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 
 namespace rc::app {
@@ -220,7 +221,38 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
   return rows;
 }
 
-std::string benchJson(const std::vector<BenchRow>& rows) {
+BenchMachine benchMachine() {
+  BenchMachine m;
+  m.cpu = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    const std::size_t colon = line.find(':');
+    if (line.rfind("model name", 0) == 0 && colon != std::string::npos) {
+      const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+      if (start != std::string::npos) m.cpu = line.substr(start);
+      break;
+    }
+  }
+  m.logicalCpus = resolveThreadCount(0);
+  m.widestKernelIsa = kernelIsaName(resolveKernelIsa(KernelIsa::kAuto));
+  m.fastestEmbreeIsa = fastestEmbreeIsa();
+#if defined(__clang__)
+  m.compiler = "clang " __clang_version__;
+#else
+  m.compiler = "GCC " __VERSION__;
+#endif
+  m.embree = embreeVersion();
+  m.rastercheck = RASTERCHECK_VERSION;
+  return m;
+}
+
+std::string describe(const BenchMachine& m) {
+  return m.cpu + ", " + std::to_string(m.logicalCpus) + " logical CPU" + (m.logicalCpus == 1 ? "" : "s") +
+         " (kernels up to " + m.widestKernelIsa + ", Embree " + m.fastestEmbreeIsa + "); " + m.compiler +
+         ", Embree " + m.embree + ", rastercheck " + m.rastercheck;
+}
+
+std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine) {
   nlohmann::json list = nlohmann::json::array();
   for (const BenchRow& r : rows) {
     nlohmann::json row = {{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
@@ -238,7 +270,14 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
     list.push_back(row);
   }
-  return nlohmann::json({{"format_version", 1}, {"rows", list}}).dump(2) + "\n";
+  const nlohmann::json about = {{"cpu", machine.cpu},
+                                {"logical_cpus", machine.logicalCpus},
+                                {"widest_kernel_isa", machine.widestKernelIsa},
+                                {"fastest_embree_isa", machine.fastestEmbreeIsa},
+                                {"compiler", machine.compiler},
+                                {"embree", machine.embree},
+                                {"rastercheck", machine.rastercheck}};
+  return nlohmann::json({{"format_version", 1}, {"machine", about}, {"rows", list}}).dump(2) + "\n";
 }
 
 std::vector<BenchRow> readBenchJson(const std::string& path) {

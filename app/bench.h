@@ -53,7 +53,19 @@ struct BenchRow {
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
                                const std::function<void(const std::string&)>& step);
 
-std::string benchJson(const std::vector<BenchRow>& rows);
+// What the figures were measured on: the CPU (its model name from /proc/cpuinfo, "unknown" where
+// there is none), its logical CPUs, the widest kernels and the fastest Embree mode it runs,
+// and the builds of the compiler, Embree and rastercheck.
+struct BenchMachine {
+  std::string cpu;
+  int logicalCpus = 0;
+  std::string widestKernelIsa, fastestEmbreeIsa, compiler, embree, rastercheck;
+};
+BenchMachine benchMachine();
+// One line: "AMD EPYC, 2 logical CPUs (kernels up to avx512, Embree avx512); GCC 12.2.0, ...".
+std::string describe(const BenchMachine& machine);
+
+std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine);
 // Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer.
 std::vector<BenchRow> readBenchJson(const std::string& path);
 std::string benchCsv(const std::vector<BenchRow>& rows);

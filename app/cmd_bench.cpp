@@ -39,6 +39,7 @@ int runBenchCommand(BenchArgs& args) {
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
   // Per scene: the reference's builds, each round of traces and frames, then the errors.
   Progress progress(int(scenes.size()) * (args.runs + 2), args.quiet);
+  const BenchMachine machine = benchMachine();
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
 
@@ -48,6 +49,7 @@ int runBenchCommand(BenchArgs& args) {
               args.runs, resolveThreadCount(args.settings.threads),
               kernelIsaName(resolveKernelIsa(args.settings.raster.isa)), args.settings.reference.isa.c_str(),
               args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)");
+  std::printf("machine: %s\n", describe(machine).c_str());
   std::printf("%-20s %-31s %9s %15s %8s %9s %9s %8s %8s %9s %9s %9s %8s\n", "scene", "setting", "raster ms",
               "(min..max)", "floor ms", "ref build", "ref trace", "speedup", "w/build", "bary max", "bary p999", "disagree",
               "exr ms");
@@ -64,7 +66,7 @@ int runBenchCommand(BenchArgs& args) {
               "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
               "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
               "  --json adds stage times\n");
-  if (!args.json.empty()) writeTextFile(args.json, benchJson(rows));
+  if (!args.json.empty()) writeTextFile(args.json, benchJson(rows, machine));
   if (!args.csv.empty()) writeTextFile(args.csv, benchCsv(rows));
   if (!args.chart.empty()) writeTextFile(args.chart, benchChartSvg(rows));
   return 0;

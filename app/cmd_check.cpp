@@ -76,7 +76,7 @@ std::string settingsLine(const RenderSettings& s) {
   return std::string("rasterizer: ") + interpolationName(s.raster.interpolation) + ", " +
          precisionName(s.raster.precision) + ", " + std::to_string(s.raster.subpixelBits) +
          " subpixel bits; reference: Embree " + s.reference.isa + "; " +
-         std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck 0.1.0";
+         std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck " RASTERCHECK_VERSION;
 }
 
 int runCheck(CheckArgs& args) {

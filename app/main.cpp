@@ -9,7 +9,7 @@
 int main(int argc, char** argv) {
   CLI::App root{"rastercheck: a CPU rasterizer checked pixel by pixel against an Embree reference"};
   root.require_subcommand(1);
-  root.set_version_flag("--version", "rastercheck 0.1.0");
+  root.set_version_flag("--version", "rastercheck " RASTERCHECK_VERSION);
   rc::app::Action action;
   rc::app::registerScenes(root, action);
   rc::app::registerRender(root, action);

@@ -43,6 +43,12 @@ std::string fastestEmbreeIsa() {
   return "sse2";
 }
 
+std::string embreeVersion() {
+  EmbreeDevice device("verbose=0");
+  const auto v = rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_VERSION);  // 31305 for 3.13.5
+  return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+}
+
 namespace {
 
 // Returns the mesh triangle of each Embree triangle (empty: the same index).

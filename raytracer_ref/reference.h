@@ -43,6 +43,9 @@ class ReferenceTracer {
 // unless told otherwise, so the speed-ups are against Embree's fastest mode on the machine.
 std::string fastestEmbreeIsa();
 
+// The version of the Embree library the program runs with, as a device reports it ("3.13.5").
+std::string embreeVersion();
+
 // Build and trace in one call.
 Framebuffer renderReference(const Scene& scene, const ReferenceOptions& options);
 

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
 #include "core/exr_io.h"
+#include "core/parallel.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 #include "tests/run_command.h"
@@ -244,6 +246,23 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_NE(svg.find("Pareto"), std::string::npos);
   EXPECT_EQ(run("bench cube --runs 0").exitCode, 2);
+  // The figures carry what they were measured on, in the JSON and on stdout.
+  const auto& machine = j["machine"];
+  const std::string cpu = machine["cpu"];
+  EXPECT_FALSE(cpu.empty());
+  EXPECT_NE(r.output.find("machine: " + cpu + ", " + std::to_string(rc::resolveThreadCount(0)) + " logical CPU"),
+            std::string::npos) << r.output;
+  EXPECT_EQ(machine["logical_cpus"], rc::resolveThreadCount(0));
+  EXPECT_EQ(machine["widest_kernel_isa"], rc::kernelIsaName(rc::resolveKernelIsa(rc::KernelIsa::kAuto)));
+  EXPECT_EQ(machine["fastest_embree_isa"], rc::fastestEmbreeIsa());
+  // The library's version as it reports it, with the major version of the headers built against.
+  const std::string embree = machine["embree"];
+  EXPECT_EQ(embree.rfind(std::to_string(RTC_VERSION_MAJOR) + ".", 0), 0u) << embree;
+  EXPECT_EQ(std::count(embree.begin(), embree.end(), '.'), 2) << embree;
+  EXPECT_NE(run("--version").output.find("rastercheck " + machine["rastercheck"].get<std::string>() + "\n"),
+            std::string::npos);
+  const std::string compiler = machine["compiler"];
+  EXPECT_TRUE(compiler.rfind("GCC ", 0) == 0 || compiler.rfind("clang ", 0) == 0) << compiler;
   EXPECT_EQ(run("check cube --bench-json " + (dir / "b.json").string()).exitCode, 2) << "needs --report";
   std::ofstream(dir / "bad.json") << R"({"format_version": 1, "rows": [{"scene": "x"}]})";
   const CliRun bad = run("check cube -q --report " + (dir / "rep").string() + " --bench-json " + (dir / "bad.json").string());
