@@ -115,7 +115,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     // frame. A slow spell of the machine (seconds long on a shared one) then falls on the
     // reference's trace and the settings alike instead of on all the runs of whichever it met,
     // so the medians and the ratios between them stay put. (Built in the rounds too, the BVH
-    // took 183 to 220 ms at 1M triangles instead of 157 to 161, and the ratios counting the
+    // took 183 to 220 ms at 1M triangles instead of 153 to 161, and the ratios counting the
     // build would have gained from it.)
     // The settings take their turns from a different one each round (round r starts with
     // setting r): in a fixed order, the first setting of every round, the default, had the
