@@ -280,7 +280,7 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
   return nlohmann::json({{"format_version", 1}, {"machine", about}, {"rows", list}}).dump(2) + "\n";
 }
 
-std::vector<BenchRow> readBenchJson(const std::string& path) {
+BenchResults readBenchJson(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ioError(path, "cannot read bench results");
   nlohmann::json doc;
@@ -324,7 +324,24 @@ std::vector<BenchRow> readBenchJson(const std::string& path) {
     }
   }
   if (rows.empty()) throw badInput(path + ": /rows", "no rows");
-  return rows;
+  BenchResults results{rows, std::nullopt};
+  if (doc.contains("machine")) {
+    const nlohmann::json& j = doc["machine"];
+    try {
+      BenchMachine m;
+      m.cpu = j.at("cpu").get<std::string>();
+      m.logicalCpus = j.at("logical_cpus").get<int>();
+      m.widestKernelIsa = j.at("widest_kernel_isa").get<std::string>();
+      m.fastestEmbreeIsa = j.at("fastest_embree_isa").get<std::string>();
+      m.compiler = j.at("compiler").get<std::string>();
+      m.embree = j.at("embree").get<std::string>();
+      m.rastercheck = j.at("rastercheck").get<std::string>();
+      results.machine = m;
+    } catch (const nlohmann::json::exception& e) {
+      throw badInput(path + ": /machine", std::string("missing or mistyped field: ") + e.what());
+    }
+  }
+  return results;
 }
 
 std::string benchCsv(const std::vector<BenchRow>& rows) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,8 +67,14 @@ BenchMachine benchMachine();
 std::string describe(const BenchMachine& machine);
 
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine);
+// What benchJson wrote: the rows, and the machine where the file has one (bench wrote none
+// before session 17).
+struct BenchResults {
+  std::vector<BenchRow> rows;
+  std::optional<BenchMachine> machine;
+};
 // Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer.
-std::vector<BenchRow> readBenchJson(const std::string& path);
+BenchResults readBenchJson(const std::string& path);
 std::string benchCsv(const std::vector<BenchRow>& rows);
 // Frame time against p99.9 barycentric error on log axes, one series per scene, the Pareto
 // front (no other setting both faster and more accurate) marked.

@@ -86,7 +86,7 @@ int runCheck(CheckArgs& args) {
   if (!args.out.empty()) makeFolder(args.out);
   if (!args.report.empty()) makeFolder(args.report);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
-  const std::vector<BenchRow> bench = args.benchJson.empty() ? std::vector<BenchRow>{} : readBenchJson(args.benchJson);
+  const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
   const bool wantHeatmap = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);

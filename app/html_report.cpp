@@ -111,12 +111,15 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   html << "</table>\n</section>\n";
 }
 
-void benchSection(std::ostringstream& html, const std::string& dir, const std::vector<BenchRow>& rows) {
+void benchSection(std::ostringstream& html, const std::string& dir, const BenchResults& bench) {
+  const std::vector<BenchRow>& rows = bench.rows;
   writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows));
   html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
        << "<p>From bench results: medians over runs in one process; floor ms is the time to write the setting's "
        << "output planes alone (memory's floor under raster ms); error is the p99.9 barycentric error against "
-       << "the reference; dashed lines mark each scene's Pareto front.</p>\n"
+       << "the reference; dashed lines mark each scene's Pareto front.</p>\n";
+  if (bench.machine) html << "<p class=\"settings\">Measured on: " << escape(describe(*bench.machine)) << "</p>\n";
+  html
        << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
        << "<th>speedup</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
@@ -134,7 +137,7 @@ void benchSection(std::ostringstream& html, const std::string& dir, const std::v
 }  // namespace
 
 void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
-                     const std::vector<BenchRow>& bench) {
+                     const BenchResults& bench) {
   std::size_t failed = 0;
   for (const ReportScene& s : scenes) failed += s.report.pass ? 0 : 1;
   std::ostringstream html;
@@ -149,7 +152,7 @@ void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& sce
        << "(bright); green: different triangle; cyan: covered by one side only; magenta: NaN or Inf; grey: "
        << "empty. Thresholds and their origin: docs/compare.md.</p>\n";
   for (const ReportScene& s : scenes) sceneSection(html, s);
-  if (!bench.empty()) benchSection(html, dir, bench);
+  if (!bench.rows.empty()) benchSection(html, dir, bench);
   html << "</body>\n</html>\n";
   writeTextFile((std::filesystem::path(dir) / "index.html").string(), html.str());
 }

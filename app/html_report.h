@@ -19,8 +19,9 @@ struct ReportScene {
 };
 
 // Writes DIR/index.html (atomically). `settings` is one line describing the run. With bench
-// rows, it also writes DIR/bench.svg and shows it with a table of the rows.
+// rows, it also writes DIR/bench.svg and shows it with a table of the rows, under the machine
+// they were measured on where the results name it.
 void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
-                     const std::vector<BenchRow>& bench = {});
+                     const BenchResults& bench = {});
 
 }  // namespace rc::app

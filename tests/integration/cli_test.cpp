@@ -268,6 +268,26 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const CliRun bad = run("check cube -q --report " + (dir / "rep").string() + " --bench-json " + (dir / "bad.json").string());
   EXPECT_EQ(bad.exitCode, 3) << bad.output;
   EXPECT_NE(bad.output.find("/rows/0"), std::string::npos) << bad.output;
+  // A machine that is there must be whole: the report shows it.
+  nlohmann::json mistyped = j;
+  mistyped["machine"]["logical_cpus"] = "two";
+  std::ofstream(dir / "bad_machine.json") << mistyped.dump();
+  const CliRun badMachine = run("check cube -q --report " + (dir / "rep2").string() + " --bench-json " +
+                                (dir / "bad_machine.json").string());
+  EXPECT_EQ(badMachine.exitCode, 3) << badMachine.output;
+  EXPECT_NE(badMachine.output.find("bad_machine.json: /machine"), std::string::npos) << badMachine.output;
+  EXPECT_FALSE(fs::exists(dir / "rep2" / "index.html")) << "no partial report";
+  // Results from before bench wrote a machine still make a report, without the line.
+  nlohmann::json older = j;
+  older.erase("machine");
+  std::ofstream(dir / "older.json") << older.dump();
+  const CliRun fromOlder =
+      run("check cube -q --report " + (dir / "rep3").string() + " --bench-json " + (dir / "older.json").string());
+  ASSERT_EQ(fromOlder.exitCode, 0) << fromOlder.output;
+  std::ifstream page(dir / "rep3" / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), {});
+  EXPECT_NE(html.find("Speed against error"), std::string::npos);
+  EXPECT_EQ(html.find("Measured on:"), std::string::npos);
 }
 
 // --embree-isa pins the reference's ISA in bench too; the table and the rows name it.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "tests/run_command.h"
@@ -80,6 +81,10 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   }
   EXPECT_EQ(images, 7);  // raster, reference and heatmap per scene, and the bench chart
   EXPECT_NE(html.find("Speed against error"), std::string::npos);
+  // The bench section names the machine the figures came from, as the bench JSON has it.
+  const nlohmann::json bench = nlohmann::json::parse(std::ifstream(fs::path(out).parent_path() / "bench.json"));
+  const std::string cpu = bench["machine"]["cpu"];
+  EXPECT_NE(html.find("Measured on: " + cpu + ", "), std::string::npos);
   // The bench rows carry their memory floor, read back from the JSON (older reports show "-").
   EXPECT_NE(html.find("<th>floor ms</th>"), std::string::npos);
   EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
