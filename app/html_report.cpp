@@ -119,8 +119,7 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
        << "output planes alone (memory's floor under raster ms); error is the p99.9 barycentric error against "
        << "the reference; dashed lines mark each scene's Pareto front.</p>\n";
   if (bench.machine) html << "<p class=\"settings\">Measured on: " << escape(describe(*bench.machine)) << "</p>\n";
-  html
-       << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
+  html << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
        << "<th>speedup</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
   for (const BenchRow& r : rows) {

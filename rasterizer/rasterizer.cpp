@@ -93,8 +93,8 @@ inline void prefetchForWriteAhead(const void* end) {
 constexpr std::size_t kMaxBlocks = 4094;
 // Set-up's vertex prefetches (vertex_order.h): from 16384 vertices (768 KB of clip and raster
 // positions) on, 16 triangles ahead (32 and 64 measured the same on the Stanford bunny).
-constexpr std::size_t kPrefetchVertices = 16384;
-constexpr std::size_t kPrefetchAhead = 16;
+constexpr std::size_t kVertexPrefetchMinVertices = 16384;
+constexpr std::size_t kVertexPrefetchAhead = 16;
 constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockShift) / (kMaxClipVertices - 2) - 1;
 
 // Raster position of a clip-space point inside the view volume.
@@ -349,15 +349,15 @@ struct Pipeline {
       // Every vertex is inside the view volume, so every triangle is whole: four at a time,
       // in order, without reading outcodes (set-up at 1M triangles about 15% faster).
       // Vertex arrays larger than about a core's L2 cache, in an order that jumps through them,
-      // take prefetches of the vertices kPrefetchAhead triangles on (vertex_order.h).
-      const bool prefetch = frame.raster.size() >= kPrefetchVertices &&
+      // take prefetches of the vertices kVertexPrefetchAhead triangles on (vertex_order.h).
+      const bool prefetch = frame.raster.size() >= kVertexPrefetchMinVertices &&
                             jumpsThroughVertices(triangles.data() + begin, end - begin);
       for (std::size_t t = begin; t < end; t += batch::kLanes) {
         const std::size_t n = std::min<std::size_t>(batch::kLanes, end - t);
         for (std::size_t k = 0; k < batch::kLanes; ++k) pendingTris[k] = triangles[t + (k < n ? k : 0)];
-        if (prefetch && t + kPrefetchAhead + batch::kLanes <= end) {
+        if (prefetch && t + kVertexPrefetchAhead + batch::kLanes <= end) {
           for (std::size_t k = 0; k < batch::kLanes; ++k) {
-            const glm::uvec3 ahead = triangles[t + kPrefetchAhead + k];
+            const glm::uvec3 ahead = triangles[t + kVertexPrefetchAhead + k];
             for (int i = 0; i < 3; ++i) {
               __builtin_prefetch(&frame.raster[ahead[i]]);
               __builtin_prefetch(&frame.clip[ahead[i]].w);
