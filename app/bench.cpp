@@ -79,6 +79,7 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
       make("perspective-double-8bit", Interpolation::kPerspective, Precision::kDouble, 8, threads, false),
       make("perspective-float-4bit", Interpolation::kPerspective, Precision::kFloat, 4, threads, false),
       make("perspective-float-16bit", Interpolation::kPerspective, Precision::kFloat, 16, threads, false),
+      make("perspective-float-nosnap", Interpolation::kPerspective, Precision::kFloat, 0, threads, false),
       make("perspective-float-8bit-1thread", Interpolation::kPerspective, Precision::kFloat, 8, 1, false)};
   // What the SIMD width and the four diagnostic channels cost: the same bits (respectively
   // the same channels less four), so the same error.

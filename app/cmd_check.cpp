@@ -74,8 +74,9 @@ void writeExrs(const std::string& dir, const std::string& stem, const CheckResul
 
 std::string settingsLine(const RenderSettings& s) {
   return std::string("rasterizer: ") + interpolationName(s.raster.interpolation) + ", " +
-         precisionName(s.raster.precision) + ", " + std::to_string(s.raster.subpixelBits) +
-         " subpixel bits; reference: Embree " + s.reference.isa + "; " +
+         precisionName(s.raster.precision) + ", " +
+         (s.raster.subpixelBits == 0 ? std::string("no snapping") : std::to_string(s.raster.subpixelBits) + " subpixel bits") +
+         "; reference: Embree " + s.reference.isa + "; " +
          std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck " RASTERCHECK_VERSION;
 }
 

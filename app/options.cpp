@@ -1,6 +1,8 @@
 // Shared CLI options.
 #include "app/options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -53,9 +55,23 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
           std::map<std::string, Culling>{{"auto", Culling::kAuto}, {"none", Culling::kNone}}, CLI::ignore_case))
       ->default_str("auto");
   command->add_option("--subpixel-bits", s.raster.subpixelBits,
-                      "fraction bits of snapped vertex positions used for coverage")
-      ->check(CLI::Range(1, 16))
-      ->capture_default_str();
+                      "fraction bits of snapped vertex positions used for coverage (1..16), or none: coverage of "
+                      "the unsnapped triangle, decided exactly")
+      ->transform(CLI::Validator(
+          [](std::string& value) -> std::string {
+            std::string lower = value;
+            for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            if (lower == "none") {
+              value = "0";
+              return "";
+            }
+            const bool digits = !value.empty() && value.size() <= 2 &&
+                                std::all_of(value.begin(), value.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+            if (digits && std::stoi(value) >= 1 && std::stoi(value) <= 16) return "";
+            return "must be 1..16 or none, got " + value;
+          },
+          "1..16|none"))
+      ->default_str("8");
   command->add_option("--raster-isa", s.raster.isa,
                       "instruction set of the rasterizer's pixel kernels; every choice gives the same bits")
       ->transform(CLI::CheckedTransformer(

@@ -44,6 +44,7 @@ const char* precisionName(Precision precision) {
 const char* depthMappingName(DepthMapping mapping) {
   return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
 }
+std::string subpixelBitsName(int bits) { return bits == 0 ? "none" : std::to_string(bits); }
 const char* kernelIsaName(KernelIsa isa) {
   switch (isa) {
     case KernelIsa::kSse2: return "sse2";
@@ -223,8 +224,9 @@ struct Pipeline {
       : scene(s), options(o), frame(workspace), isa(resolveKernelIsa(o.isa)), width(s.camera.width()),
         height(s.camera.height()) {
     // Guard band: 2^(28 - bits) pixels from the viewport centre, so that snapped positions
-    // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it.
-    const double guardPixels = std::ldexp(1.0, 28 - o.subpixelBits);
+    // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it. Without
+    // snapping, 2^20 pixels, as with 8 bits: raster positions stay below 2^21.
+    const double guardPixels = std::ldexp(1.0, 28 - (o.subpixelBits == 0 ? 8 : o.subpixelBits));
     if (std::max(width, height) > guardPixels) {
       throw usageError("--subpixel-bits " + std::to_string(o.subpixelBits) +
                        " is too fine for a " + std::to_string(width) + "x" +
@@ -248,7 +250,9 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
-    if (isa == KernelIsa::kAvx512) {  // AVX-512 VL and DQ have int64 multiplies, min and max
+    if (o.subpixelBits == 0) {  // exact orientations, one set-up at a time
+      batchSetup = batch::setupCoverageEach<Real>;
+    } else if (isa == KernelIsa::kAvx512) {  // AVX-512 VL and DQ have int64 multiplies, min and max
       batchSetup = batch::setupCoverageAvx512;
     } else if (isa != KernelIsa::kSse2) {
       batchSetup = batch::setupCoverageAvx2;
@@ -309,6 +313,38 @@ struct Pipeline {
     context.cullBackFaces = options.culling == Culling::kAuto && scene.mesh.closedSolid &&
                             nearestW - context.clipError > scene.camera.zNear();
     frame.allInside = std::all_of(frame.outcodes.begin(), frame.outcodes.end(), [](unsigned c) { return c == 0; });
+  }
+
+  // Without snapping, coverage is exact for the double raster positions (orientation.h), so a
+  // centre can be decided otherwise than the exact projection of the mesh decides it only
+  // within the distance those positions may have moved: setup_formulas.h's boundsOf delta of
+  // each vertex a set-up read (every vertex inside the view volume, every clipped
+  // sub-triangle's), at its largest, doubled for the second-order terms and the clipped
+  // vertices' interpolation. In pixels; after set-up.
+  double unsnappedEdgeBand() const {
+    const double scale = 0.5 * std::max(width, height) * context.clipError;
+    const auto delta = [&](const glm::dvec4& c, const glm::dvec2& r) {
+      const double ndc = std::max(std::fabs(c.x), std::fabs(c.y)) / c.w;
+      return scale * (1.0 + ndc) / c.w + 0x1p-50 * (std::max(std::fabs(r.x), std::fabs(r.y)) + 1.0);
+    };
+    const std::size_t count = frame.clip.size();
+    const int vertexBlocks = int((count + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
+    std::vector<double> largest(std::size_t(vertexBlocks) + frame.blocks.size(), 0.0);
+    parallelFor(int(largest.size()), options.threads, [&](int b) {
+      double most = 0.0;
+      if (b < vertexBlocks) {
+        const std::size_t end = std::min(count, std::size_t(b + 1) * kTrianglesPerBlock);
+        for (std::size_t v = std::size_t(b) * kTrianglesPerBlock; v < end; ++v) {
+          if (frame.outcode[v] == 0) most = std::max(most, delta(frame.clip[v], frame.raster[v]));
+        }
+      } else {
+        for (const ClippedTriangle<Real>& t : frame.blocks[std::size_t(b - vertexBlocks)].clipped) {
+          for (int i = 0; i < 3; ++i) most = std::max(most, delta(t.clip[i], t.raster[i]));
+        }
+      }
+      largest[std::size_t(b)] = most;
+    });
+    return largest.empty() ? 0.0 : 2.0 * *std::max_element(largest.begin(), largest.end());
   }
 
   glm::dvec2 rasterOf(const glm::dvec4& c) const { return rc::rasterOf(scene.camera, c); }
@@ -550,9 +586,13 @@ kernel::Outputs outputPlanes(Framebuffer& fb, const Mesh& mesh, bool diagnostics
   return out;
 }
 
-// Returns whether the frame culled back faces.
+struct FrameFacts {
+  bool culled;      // the frame culled back faces
+  double edgeBand;  // pixels (channels::header::kEdgeBand)
+};
+
 template <typename Real>
-bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
+FrameFacts renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
                  StageTimes& times) {
   auto t0 = std::chrono::steady_clock::now();
   Pipeline<Real> p(scene, options, frame);
@@ -591,12 +631,15 @@ bool renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& 
     }
   });
   times.tilesMs = millisecondsSince(t0);
-  return p.context.cullBackFaces;
+  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
+  // raster positions themselves are far more accurate than that.
+  const double band = options.subpixelBits == 0 ? p.unsnappedEdgeBand() : 0.7072 * std::ldexp(1.0, -options.subpixelBits);
+  return {p.context.cullBackFaces, band};
 }
 
 void checkSubpixelBits(const RasterOptions& options) {
-  if (options.subpixelBits < 1 || options.subpixelBits > 16) {
-    throw usageError("--subpixel-bits must be 1..16, got " + std::to_string(options.subpixelBits));
+  if (options.subpixelBits < 0 || options.subpixelBits > 16) {
+    throw usageError("--subpixel-bits must be 1..16 or none (0), got " + std::to_string(options.subpixelBits));
   }
 }
 
@@ -612,7 +655,16 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene
   for (const SetupBlock<Real>& block : frame.blocks) {
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
       pixels.clear();
-      kernel::coveredPixelsOf(block.coverage[i], options.subpixelBits, pixels, p.width);
+      const CoverageSetup<Real>& c = block.coverage[i];
+      glm::dvec2 raster[3];
+      if (c.source.clipped < 0) {
+        const glm::uvec3 tri = scene.mesh.triangles[c.source.triangle];
+        raster[0] = frame.raster[tri.x], raster[1] = frame.raster[tri.y], raster[2] = frame.raster[tri.z];
+      } else {
+        const ClippedTriangle<Real>& t = block.clipped[std::size_t(c.source.clipped)];
+        raster[0] = t.raster[0], raster[1] = t.raster[1], raster[2] = t.raster[2];
+      }
+      kernel::coveredPixelsOf(c, options.subpixelBits, raster, pixels, p.width);
       for (std::uint32_t pixel : pixels) pairs.emplace_back(block.coverage[i].source.triangle, pixel);
     }
   }
@@ -634,20 +686,18 @@ Rasterizer::Rasterizer(const RasterOptions& options) : options_(options), worksp
 Rasterizer::~Rasterizer() = default;
 
 void Rasterizer::render(const Scene& scene, Framebuffer& target) {
-  const bool culled = options_.precision == Precision::kFloat
-                          ? renderFrame(scene, options_, workspace_->single, target, times_)
-                          : renderFrame(scene, options_, workspace_->twice, target, times_);
+  const FrameFacts facts = options_.precision == Precision::kFloat
+                               ? renderFrame(scene, options_, workspace_->single, target, times_)
+                               : renderFrame(scene, options_, workspace_->twice, target, times_);
   target.attributes[channels::header::kRenderer] = "raster";
   target.attributes[channels::header::kMode] = interpolationName(options_.interpolation);
   target.attributes[channels::header::kPrecision] = precisionName(options_.precision);
-  target.attributes["rastercheck.subpixelBits"] = std::to_string(options_.subpixelBits);
+  target.attributes["rastercheck.subpixelBits"] = subpixelBitsName(options_.subpixelBits);
   target.attributes["rastercheck.depthMapping"] = depthMappingName(options_.depthMapping);
   target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
-  target.attributes["rastercheck.cull"] = culled ? "back" : "none";
-  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
-  // raster positions themselves are far more accurate than that.
+  target.attributes["rastercheck.cull"] = facts.culled ? "back" : "none";
   char band[32];
-  std::snprintf(band, sizeof band, "%.6g", 0.7072 * std::ldexp(1.0, -options_.subpixelBits));
+  std::snprintf(band, sizeof band, "%.6g", facts.edgeBand);
   target.attributes[channels::header::kEdgeBand] = band;
   target.attributes[channels::header::kScene] = scene.name;
   target.attributes[channels::header::kCamera] = scene.camera.describe();

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -46,11 +47,15 @@ const char* kernelIsaName(KernelIsa isa);
 KernelIsa resolveKernelIsa(KernelIsa isa);
 const char* precisionName(Precision precision);
 const char* depthMappingName(DepthMapping mapping);
+// "8", or "none" for 0: as --subpixel-bits takes it and rastercheck.subpixelBits records it.
+std::string subpixelBitsName(int bits);
 
 struct RasterOptions {
   Interpolation interpolation = Interpolation::kPerspective;  // how barycentrics are recovered
   Precision precision = Precision::kFloat;  // arithmetic of clipping, setup and per-pixel work
-  int subpixelBits = 8;  // fixed-point fraction bits of snapped vertices for coverage (1..16)
+  // Fixed-point fraction bits of snapped vertices for coverage (1..16), or 0: no snapping,
+  // coverage of the unsnapped triangle decided exactly (orientation.h).
+  int subpixelBits = 8;
   DepthMapping depthMapping = DepthMapping::kInverseW;
   int threads = 0;       // worker threads; 0 = all cores
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rasterizer/orientation.h"
 #include "rasterizer/setup_formulas.h"
 
 namespace rc {
@@ -27,12 +28,59 @@ formulas::Anchored<double> anchoredOf(const glm::dvec4 clip[3], const glm::dvec2
   return formulas::anchoredOf(rx, ry, w, anchorX + 0.5, anchorY + 0.5);  // the anchor's centre, exact
 }
 
+// The depth-key plane of a set-up whose box is made, at its anchor. False when the unsnapped
+// area rounds to 0 in double: the snapped triangle (or, without snapping, the exact one) has
+// area, and the double one can only lose it to a needle far below a pixel. No barycentrics
+// exist for it: it is dropped.
+template <typename Real>
+bool setupPlanes(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx, CoverageSetup<Real>& c) {
+  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX(), c.anchorY());
+  if (!(a.area != 0.0)) return false;
+  const formulas::KeyPlane<double> key = formulas::keyPlaneOf(a, ctx);
+  c.key0 = Real(key.key0);
+  c.keyX = Real(key.keyX);
+  c.keyY = Real(key.keyY);
+  return true;
+}
+
+// setupCoverage without snapping (subpixelBits 0): the orientation is exact (orientation.h),
+// the box holds every pixel whose centre may lie in the unsnapped triangle (rounding of
+// min - 0.5 and max - 0.5 only widens it), and the edges' fill-rule flags follow the exact
+// signs of the vertex differences. The snapped vertices stay 0; the tiles read the raster
+// positions instead (tile_kernel.h's coverRowsUnsnapped).
+template <typename Real>
+bool setupUnsnapped(const glm::dvec2 raster[3], const SetupContext& ctx, CoverageSetup<Real>& c) {
+  const int area = orientation(raster[0].x, raster[0].y, raster[1].x, raster[1].y, raster[2].x, raster[2].y);
+  if (area == 0 || (ctx.cullBackFaces && area > 0)) return false;
+  const auto [minX, maxX] = std::minmax({raster[0].x, raster[1].x, raster[2].x});
+  const auto [minY, maxY] = std::minmax({raster[0].y, raster[1].y, raster[2].y});
+  // The guard band keeps |raster| below 2^21 pixels (rasterizer.cpp), well inside int.
+  c.minX = int(std::max(0.0, std::ceil(minX - 0.5)));
+  c.minY = int(std::max(0.0, std::ceil(minY - 0.5)));
+  c.maxX = int(std::min(double(ctx.width - 1), std::floor(maxX - 0.5)));
+  c.maxY = int(std::min(double(ctx.height - 1), std::floor(maxY - 0.5)));
+  if (c.minX > c.maxX || c.minY > c.maxY) return false;
+  c.flags = area > 0 ? CoverageSetup<Real>::kPositive : 0u;
+  for (int i = 0; i < 3; ++i) {
+    c.x[i] = 0, c.y[i] = 0;
+    // coverage.h's rule on the signs of a = sign (y_from - y_to) and b = sign (x_to - x_from).
+    const glm::dvec2 from = raster[(i + 1) % 3], to = raster[(i + 2) % 3];
+    const int a = area * ((from.y > to.y) - (from.y < to.y)), b = area * ((to.x > from.x) - (to.x < from.x));
+    if (!(a > 0 || (a == 0 && b > 0))) c.flags |= CoverageSetup<Real>::kNotTopLeft << i;
+  }
+  return true;
+}
+
 }  // namespace
 
 template <typename Real>
 bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx,
                    CoverageSetup<Real>& c) {
   const int bits = ctx.subpixelBits;
+  if (bits == 0) {
+    if (!setupUnsnapped(raster, ctx, c)) return false;
+    return setupPlanes(clip, raster, ctx, c);
+  }
   const double scale = double(std::int64_t(1) << bits);
   std::int64_t xf[3], yf[3];
   for (int i = 0; i < 3; ++i) {
@@ -71,15 +119,7 @@ bool setupCoverage(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const S
     c.flags |= CoverageSetup<Real>::kNarrow;
   }
 
-  const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX(), c.anchorY());
-  // The snapped triangle has area; the unsnapped one can only lose it to a double rounding of
-  // a needle far below the snapping grid. No barycentrics exist for it: drop it.
-  if (!(a.area != 0.0)) return false;
-  const formulas::KeyPlane<double> key = formulas::keyPlaneOf(a, ctx);
-  c.key0 = Real(key.key0);
-  c.keyX = Real(key.keyX);
-  c.keyY = Real(key.keyY);
-  return true;
+  return setupPlanes(clip, raster, ctx, c);
 }
 
 template <typename Real>

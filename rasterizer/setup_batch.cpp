@@ -233,6 +233,23 @@ __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes
   setupShade4<32>(tris, clip, raster, ctx, c, s);
 }
 
+template <typename Real>
+unsigned setupCoverageEach(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                           const SetupContext& ctx, CoverageSetup<Real> c[kLanes]) {
+  unsigned accepted = 0;
+  for (int k = 0; k < kLanes; ++k) {
+    const glm::uvec3 t = tris[k];
+    const glm::dvec4 v[3] = {clip[t.x], clip[t.y], clip[t.z]};
+    const glm::dvec2 r[3] = {raster[t.x], raster[t.y], raster[t.z]};
+    if (setupCoverage(v, r, ctx, c[k])) accepted |= 1u << k;
+  }
+  return accepted;
+}
+template unsigned setupCoverageEach<float>(const glm::uvec3[kLanes], const glm::dvec4*, const glm::dvec2*,
+                                           const SetupContext&, CoverageSetup<float>[kLanes]);
+template unsigned setupCoverageEach<double>(const glm::uvec3[kLanes], const glm::dvec4*, const glm::dvec2*,
+                                            const SetupContext&, CoverageSetup<double>[kLanes]);
+
 #define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
 RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                              const glm::dvec2* raster, const SetupContext& ctx,

@@ -45,6 +45,12 @@ void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const
                     const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
                     ShadeSetup<double>* const s[kLanes]);
 
+// setupCoverage (setup.h) lane by lane, with the same contract: the set-ups the batch formulas
+// do not make, those without snapping (subpixelBits 0, exact orientations in setup.cpp).
+template <typename Real>
+unsigned setupCoverageEach(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                           const SetupContext& ctx, CoverageSetup<Real> c[kLanes]);
+
 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                              const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,

@@ -54,21 +54,29 @@ __attribute__((target("avx2"))) void streamStagedRowAvx2(std::uint32_t* const* p
 namespace {
 
 template <typename Real>
-void collect(const CoverageSetup<Real>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
-  forEachCoveredChunk<true, 16>(s, bits, s.minX, s.minY, s.maxX, s.maxY, [&](int x, int y, int, const i32x8& mask) {
+void collect(const CoverageSetup<Real>& s, int bits, const glm::dvec2 raster[3], std::vector<std::uint32_t>& pixels,
+             int width) {
+  const auto add = [&](int x, int y, int, const i32x8& mask) {
     for (int k = 0; k < kLanes; ++k) {
       if (mask[k]) pixels.push_back(std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x + k));
     }
-  });
+  };
+  if (bits != 0) {
+    forEachCoveredChunk<true, 16>(s, bits, s.minX, s.minY, s.maxX, s.maxY, add);
+  } else {
+    coverRowsUnsnapped<16>(s, raster, s.minX, s.minY, s.maxX, s.maxY, add);
+  }
 }
 
 }  // namespace
 
-void coveredPixelsOf(const CoverageSetup<float>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
-  collect(s, bits, pixels, width);
+void coveredPixelsOf(const CoverageSetup<float>& s, int bits, const glm::dvec2 raster[3], std::vector<std::uint32_t>& pixels,
+                     int width) {
+  collect(s, bits, raster, pixels, width);
 }
-void coveredPixelsOf(const CoverageSetup<double>& s, int bits, std::vector<std::uint32_t>& pixels, int width) {
-  collect(s, bits, pixels, width);
+void coveredPixelsOf(const CoverageSetup<double>& s, int bits, const glm::dvec2 raster[3], std::vector<std::uint32_t>& pixels,
+                     int width) {
+  collect(s, bits, raster, pixels, width);
 }
 
 }  // namespace rc::kernel

@@ -23,6 +23,7 @@
 #include "core/stream_row.h"
 #include "rasterizer/coverage.h"
 #include "rasterizer/interpolate.h"
+#include "rasterizer/orientation.h"
 #include "rasterizer/setup.h"
 #include "rasterizer/setup_batch.h"
 
@@ -92,8 +93,11 @@ void renderTileAvx512(const Input<double>&, const Outputs&, const TileJob&);
 // The features the AVX-512 entry points are compiled for (tile_kernel.cpp's target attribute).
 bool cpuHasKernelAvx512();
 // Pixels covered by one set-up, for coveredPixels(); the kernels' own coverage code, SSE2.
-void coveredPixelsOf(const CoverageSetup<float>& s, int bits, std::vector<std::uint32_t>& pixels, int width);
-void coveredPixelsOf(const CoverageSetup<double>& s, int bits, std::vector<std::uint32_t>& pixels, int width);
+// raster: its unsnapped vertices (read only without snapping, bits 0).
+void coveredPixelsOf(const CoverageSetup<float>& s, int bits, const glm::dvec2 raster[3], std::vector<std::uint32_t>& pixels,
+                     int width);
+void coveredPixelsOf(const CoverageSetup<double>& s, int bits, const glm::dvec2 raster[3], std::vector<std::uint32_t>& pixels,
+                     int width);
 
 // Vector values only ever pass between always-inlined functions, so the ABI of passing them
 // (which differs with and without AVX) never matters.
@@ -314,6 +318,65 @@ RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits
     coverRows<std::int32_t, kVectorSteps, kWidth>(c.edges(), bits, xa, ya, xb, yb, fn);
   } else {
     coverRows<std::int64_t, kVectorSteps, kWidth>(c.edges(), bits, xa, ya, xb, yb, fn);
+  }
+}
+
+// Coverage without snapping (subpixelBits 0, --subpixel-bits none): edge i's E_i at a pixel
+// centre c is the set-up's orientation sign times orientation(from, to, c) (orientation.h),
+// decided exactly: its filter in eight lanes of double, the same operations in the same order,
+// and its exact path for the lanes the filter leaves open (centres on the edge's line, or within
+// about 1e-16 of its length of it). A centre exactly on an edge is inside when the edge is top or
+// left (the flags), as coverage.h decides it for snapped vertices: so two triangles that share an
+// edge, whose vertices have the same raster positions, never both cover a centre and never both
+// miss one between them. v: the unsnapped raster positions. Calls fn as coverRows does, for the
+// rows ya..yb only.
+template <std::size_t kWidth, typename Real, typename Fn>
+RC_KERNEL_INLINE void coverRowsUnsnapped(const CoverageSetup<Real>& c, const glm::dvec2 v[3], int xa, int ya, int xb, int yb,
+                                         Fn&& fn) {
+  const bool positive = c.flags & CoverageSetup<Real>::kPositive;
+  const f64x8 lane{0, 1, 2, 3, 4, 5, 6, 7};
+  const auto magnitude = [](const f64x8& d) __attribute__((always_inline)) {
+    return f64x8(i64x8(d) & std::numeric_limits<std::int64_t>::max());
+  };
+  for (int y = ya; y <= yb; ++y) {
+    const double cy = double(y) + 0.5;
+    for (int x = xa, column = 0; x <= xb; x += kLanes, ++column) {
+      const f64x8 cx = (double(x) + 0.5) + lane;
+      i32x8 mask = split::lessEqual<kWidth>(iota32() + x, xb);
+      for (int i = 0; i < 3; ++i) {
+        const glm::dvec2 a = v[(i + 1) % 3], b = v[(i + 2) % 3];
+        const f64x8 left = (a.x - cx) * (b.y - cy), right = (a.y - cy) * (b.x - cx), det = left - right;
+        const f64x8 scaled = kOrientationBound * (magnitude(left) + magnitude(right));
+        const f64x8 bound = split::select<kWidth>(split::greater<kWidth>(scaled, kOrientationFloor), scaled,
+                                                  f64x8{} + kOrientationFloor);
+        const i64x8 above = split::greater<kWidth>(det, bound), below = split::less<kWidth>(det, -bound);
+        i32x8 inside = mask32(positive ? above : below);
+        const i32x8 open = mask32(~(above | below)) & mask;
+        if (any(open)) {
+          const bool topLeft = !((c.flags >> i) & CoverageSetup<Real>::kNotTopLeft);
+          for (int k = 0; k < kLanes; ++k) {
+            if (!open[k]) continue;
+            const int e = exactOrientation(a.x, a.y, b.x, b.y, cx[k], cy) * (positive ? 1 : -1);
+            inside[k] = e > 0 || (e == 0 && topLeft) ? -1 : 0;
+          }
+        }
+        mask &= inside;
+      }
+      fn(x, y, column, mask);
+    }
+  }
+}
+
+// The unsnapped raster positions of set-up `name`'s vertices: the frame's, or its clipped
+// sub-triangle's.
+template <typename Real>
+RC_KERNEL_INLINE void rasterOfSetup(const Input<Real>& in, std::uint32_t name, const CoverageSetup<Real>& c, glm::dvec2 v[3]) {
+  if (c.source.clipped < 0) {
+    const glm::uvec3 tri = in.triangles[c.source.triangle];
+    v[0] = in.vertexRaster[tri.x], v[1] = in.vertexRaster[tri.y], v[2] = in.vertexRaster[tri.z];
+  } else {
+    const ClippedTriangle<Real>& t = in.clipped[name >> kBlockShift][c.source.clipped];
+    v[0] = t.raster[0], v[1] = t.raster[1], v[2] = t.raster[2];
   }
 }
 
@@ -738,48 +801,63 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   for (int i = 0; i < kPixels; ++i) winner[i] = kEmpty;
   for (int i = 0; i < kPixels; ++i) nearest[i] = -std::numeric_limits<Real>::infinity();
 
-  // Coverage and depth test, set-ups in triangle order; a tie keeps the earlier triangle.
-  for (std::size_t n = 0; n < job.count; ++n) {
-    const std::uint32_t name = job.bins[n];
-    if (n + kPrefetchAhead < job.count) {
-      const std::uint32_t ahead = job.bins[n + kPrefetchAhead];
-      __builtin_prefetch(&in.coverage[ahead >> kBlockShift][ahead & kLocalMask]);
-    }
-    const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
-    const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
-    const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
-    // Once per set-up, in locals: the compiler cannot tell that the stores below miss c.
-    const int anchorX = c.anchorX(), anchorY = c.anchorY();
-    const Real key0 = c.key0, keyX = c.keyX, keyY = c.keyY;
-    const V dx0 = Real(xa - anchorX) + iota<Real>();
-    // The key key0 + keyX dx + keyY dy sums its first two terms first, and they are the same
-    // for every row: the AVX2 and AVX-512 builds take them once per chunk column (dx: small
-    // integers, exact). The SSE2 build measured 6% slower that way, and makes them per chunk.
-    V keyOfColumn[kTileSize / kLanes];
-    if constexpr (kAvx2) {
-      V dx = dx0;
-      for (int column = 0; column <= (xb - xa) / kLanes; ++column, dx += Real(kLanes)) {
-        keyOfColumn[column] = key0 + keyX * dx;
+  // Coverage and depth test, set-ups in triangle order; a tie keeps the earlier triangle. The
+  // loop is made twice, with and without snapping, so that the default's holds no test of it.
+  const auto coverage = [&](auto unsnapped) __attribute__((always_inline)) {
+    for (std::size_t n = 0; n < job.count; ++n) {
+      const std::uint32_t name = job.bins[n];
+      if (n + kPrefetchAhead < job.count) {
+        const std::uint32_t ahead = job.bins[n + kPrefetchAhead];
+        __builtin_prefetch(&in.coverage[ahead >> kBlockShift][ahead & kLocalMask]);
       }
-    }
-    const u32x8 position = split::splat<kWidth, u32x8>(std::uint32_t(n));  // built once, not per chunk
-    forEachCoveredChunk<kAvx2, kWidth>(c, in.subpixelBits, xa, ya, xb, yb, [&](int x, int y, int column, const i32x8& mask) {
-      V z;
+      const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+      const int xa = std::max(job.x0, c.minX), ya = std::max(job.y0, c.minY);
+      const int xb = std::min(job.x1, c.maxX), yb = std::min(job.y1, c.maxY);
+      // Once per set-up, in locals: the compiler cannot tell that the stores below miss c.
+      const int anchorX = c.anchorX(), anchorY = c.anchorY();
+      const Real key0 = c.key0, keyX = c.keyX, keyY = c.keyY;
+      const V dx0 = Real(xa - anchorX) + iota<Real>();
+      // The key key0 + keyX dx + keyY dy sums its first two terms first, and they are the same
+      // for every row: the AVX2 and AVX-512 builds take them once per chunk column (dx: small
+      // integers, exact). The SSE2 build measured 6% slower that way, and makes them per chunk.
+      V keyOfColumn[kTileSize / kLanes];
       if constexpr (kAvx2) {
-        z = keyOfColumn[column] + keyY * Real(y - anchorY);
-      } else {
-        z = key0 + keyX * (dx0 + Real(x - xa)) + keyY * Real(y - anchorY);
+        V dx = dx0;
+        for (int column = 0; column <= (xb - xa) / kLanes; ++column, dx += Real(kLanes)) {
+          keyOfColumn[column] = key0 + keyX * dx;
+        }
       }
-      Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
-      std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
-      const V old = load<V>(nearestAt);
-      const M nearer = maskAs<M>(mask) & split::greater<kWidth>(z, old);
-      const i32x8 update = mask32(nearer);
-      // Branch-free: a chunk that changes nothing stores what it loaded.
-      store(nearestAt, split::select<kWidth>(nearer, z, old));
-      const u32x8 w = load<u32x8>(winnerAt);
-      store(winnerAt, split::select<kWidth>(update, position, w));
-    });
+      const u32x8 position = split::splat<kWidth, u32x8>(std::uint32_t(n));  // built once, not per chunk
+      const auto depthTest = [&](int x, int y, int column, const i32x8& mask) {
+        V z;
+        if constexpr (kAvx2) {
+          z = keyOfColumn[column] + keyY * Real(y - anchorY);
+        } else {
+          z = key0 + keyX * (dx0 + Real(x - xa)) + keyY * Real(y - anchorY);
+        }
+        Real* nearestAt = nearest + (y - job.y0) * kTileSize + (x - job.x0);
+        std::uint32_t* winnerAt = winner + (y - job.y0) * kTileSize + (x - job.x0);
+        const V old = load<V>(nearestAt);
+        const M nearer = maskAs<M>(mask) & split::greater<kWidth>(z, old);
+        const i32x8 update = mask32(nearer);
+        // Branch-free: a chunk that changes nothing stores what it loaded.
+        store(nearestAt, split::select<kWidth>(nearer, z, old));
+        const u32x8 w = load<u32x8>(winnerAt);
+        store(winnerAt, split::select<kWidth>(update, position, w));
+      };
+      if constexpr (!decltype(unsnapped)::value) {
+        forEachCoveredChunk<kAvx2, kWidth>(c, in.subpixelBits, xa, ya, xb, yb, depthTest);
+      } else {
+        glm::dvec2 v[3];
+        rasterOfSetup(in, name, c, v);
+        coverRowsUnsnapped<kWidth>(c, v, xa, ya, xb, yb, depthTest);
+      }
+    }
+  };
+  if (in.subpixelBits != 0) {
+    coverage(std::false_type{});
+  } else {
+    coverage(std::true_type{});
   }
 
   // The resolve half of the set-up (setupShade) for every set-up that wins a pixel of this

@@ -16,7 +16,7 @@ packages=(
   libpng-dev                     # PNG images for people
   libfreetype-dev fonts-dejavu-core  # legend text in PNG heatmaps
   libgtest-dev                   # the test suite
-  libgmp-dev                     # exact rational oracle of the tests (tests/oracle)
+  libgmp-dev                     # exact rationals: coverage without snapping (rasterizer/orientation.cpp), the tests' oracle
   libbenchmark-dev               # Google Benchmark microbenchmarks of the kernels (bench/)
 )
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -107,7 +108,8 @@ TEST(Cli, UsageErrorsAreExitTwo) {
   for (const char* args : {"", "frobnicate", "check --no-such-flag", "check --max-bary nan",
                            "check --max-bary -1", "check --threads -1", "check --mode sideways",
                            "check no-such-scene", "check blob:tris=abc", "render floor",
-                           "check --size 0x10", "check --cull front"}) {
+                           "check --size 0x10", "check --cull front", "check --subpixel-bits 17",
+                           "check --subpixel-bits 0", "check --subpixel-bits nones", "check --subpixel-bits 8.5"}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.exitCode, 2) << "rastercheck " << args << "\n" << r.output;
   }
@@ -125,6 +127,23 @@ TEST(Cli, CullSettingIsRecordedAsWhatTheFrameDid) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(rc::readExr(out).attributes.at("rastercheck.cull"), cull) << args;
   }
+}
+
+// --subpixel-bits none: coverage of the unsnapped triangles, recorded in the header with the
+// edge band it leaves (the double raster positions' own error, far below a 16-bit grid's), and
+// gated as any other setting: the affine mode still fails.
+TEST(Cli, SubpixelBitsNoneIsRecordedAndGated) {
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const std::string out = (temp.path() / "s.exr").string();
+  const CliRun r = run("render sphere --subpixel-bits None -o " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const rc::Framebuffer fb = rc::readExr(out);
+  EXPECT_EQ(fb.attributes.at("rastercheck.subpixelBits"), "none");
+  const double band = std::stod(fb.attributes.at("rastercheck.edgeBand"));
+  EXPECT_GT(band, 0.0);
+  EXPECT_LT(band, 1e-3 * 0.7072 * std::ldexp(1.0, -16));
+  EXPECT_EQ(run("check cube slivers nearplane --subpixel-bits none -q").exitCode, 0);
+  EXPECT_EQ(run("check cube slivers nearplane --subpixel-bits none --mode affine -q").exitCode, 1);
 }
 
 TEST(Cli, MeshFilesTakeCameraOverridesAndAttributeSelection) {
@@ -177,7 +196,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const auto& rows = j["rows"];
   // An AVX2 row joins where the default's kernels are AVX-512.
   const bool avx512 = rc::resolveKernelIsa(rc::KernelIsa::kAuto) == rc::KernelIsa::kAvx512;
-  ASSERT_EQ(rows.size(), avx512 ? 10u : 9u);
+  ASSERT_EQ(rows.size(), avx512 ? 11u : 10u);
   int defaults = 0;
   double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3, avx2 = -4;
   for (const auto& row : rows) {

@@ -66,6 +66,40 @@ bool covers(const std::int64_t X[3], const std::int64_t Y[3], std::int64_t px, s
 
 }  // namespace
 
+std::vector<std::uint32_t> unsnappedCoverage(const std::array<glm::dvec2, 3>& raster, int width, int height,
+                                             bool cullBackFaces) {
+  Q X[3], Y[3];
+  for (int i = 0; i < 3; ++i) X[i] = exact(raster[i].x), Y[i] = exact(raster[i].y);
+  const Q area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+  std::vector<std::uint32_t> pixels;
+  if (area == 0 || (cullBackFaces && area > 0)) return pixels;
+  const int s = sgn(area);
+  const auto [minX, maxX] = std::minmax({raster[0].x, raster[1].x, raster[2].x});
+  const auto [minY, maxY] = std::minmax({raster[0].y, raster[1].y, raster[2].y});
+  const int x0 = std::max(0, int(std::floor(minX)) - 1), x1 = std::min(width - 1, int(std::ceil(maxX)) + 1);
+  const int y0 = std::max(0, int(std::floor(minY)) - 1), y1 = std::min(height - 1, int(std::ceil(maxY)) + 1);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const Q cx(2 * x + 1, 2), cy(2 * y + 1, 2);
+      bool inside = true;
+      for (int i = 0; i < 3 && inside; ++i) {
+        const int a = (i + 1) % 3, b = (i + 2) % 3;
+        // Interior normal of edge a->b, the triangle made positively oriented.
+        const Q nx = -(Y[b] - Y[a]) * s, ny = (X[b] - X[a]) * s;
+        const Q e = nx * (cx - X[a]) + ny * (cy - Y[a]);
+        if (e < 0 || (e == 0 && !(nx > 0 || (nx == 0 && ny > 0)))) inside = false;
+      }
+      if (inside) pixels.push_back(std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x));
+    }
+  }
+  return pixels;
+}
+
+glm::dvec2 rasterPosition(const Camera& camera, const glm::vec3& p) {
+  const glm::dvec4 c = camera.clipFromWorld() * glm::dvec4(glm::dvec3(p), 1.0);
+  return {camera.rasterXFromNdc(c.x / c.w), camera.rasterYFromNdc(c.y / c.w)};
+}
+
 Oracle::Oracle(const Scene& scene, int subpixelBits) : scene_(scene), bits_(subpixelBits) {
   const glm::dmat4 m = scene.camera.clipFromWorld();
   clip_.reserve(scene.mesh.vertexCount());

@@ -26,6 +26,18 @@ struct CoverageResult {
   int doubleCovered = 0;   // pixels covered by two sub-triangles of this one triangle
 };
 
+// (c) Coverage without snapping (--subpixel-bits none), for a triangle with these double raster
+// positions: the pixels (y * width + x, sorted) whose centres it covers under the top-left
+// rule, decided in rationals. Empty for a zero-area triangle, and with cullBackFaces for one
+// clockwise on screen (a back face).
+std::vector<std::uint32_t> unsnappedCoverage(const std::array<glm::dvec2, 3>& raster, int width, int height,
+                                             bool cullBackFaces);
+
+// The raster position the rasterizer's transform gives a vertex in front of the camera, in
+// double: the camera's clip-from-world matrix (glm's product), then its raster mapping of x / w
+// and y / w.
+glm::dvec2 rasterPosition(const Camera& camera, const glm::vec3& p);
+
 class Oracle {
  public:
   Oracle(const Scene& scene, int subpixelBits);

@@ -154,6 +154,32 @@ TEST(Rasterizer, OutputBitsAreIdenticalOnEveryKernelIsa) {
   }
 }
 
+// Without snapping (--subpixel-bits none) too: the kernels' coverage decides each centre
+// exactly, so every instruction set and thread count gives the same bits, on scenes with
+// clipped triangles, slivers and sub-pixel triangles; and the header records it.
+TEST(Rasterizer, UnsnappedCoverageGivesTheSameBitsOnEveryKernelIsaAndThreadCount) {
+  const std::vector<KernelIsa> wider = widerKernelIsas();
+  for (const char* spec : {"blob:tris=20000", "nearplane", "slivers", "subpixel", "huge"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
+      RasterOptions o = options(precision, 2);
+      o.subpixelBits = 0;
+      o.isa = KernelIsa::kSse2;
+      const Framebuffer sse2 = rasterize(scene, o);
+      EXPECT_EQ(sse2.attributes.at("rastercheck.subpixelBits"), "none");
+      o.threads = 1;
+      EXPECT_EQ(testing::differingChannels(sse2, rasterize(scene, o)), std::vector<std::string>{}) << spec << " 1 thread";
+      o.threads = 2;
+      for (KernelIsa isa : wider) {
+        o.isa = isa;
+        const Framebuffer other = rasterize(scene, o);
+        EXPECT_EQ(testing::differingChannels(sse2, other), std::vector<std::string>{})
+            << spec << " " << precisionName(precision) << " " << kernelIsaName(isa);
+      }
+    }
+  }
+}
+
 // auto takes the widest level the CPU has.
 TEST(Rasterizer, AutoPicksTheWidestKernelIsa) {
   const std::vector<KernelIsa> wider = widerKernelIsas();
@@ -380,6 +406,10 @@ TEST(Rasterizer, SubpixelBitsTooFineForTheImageAreRefused) {
   EXPECT_NO_THROW(rasterize(scene, o));
   o.subpixelBits = 17;  // outside 1..16
   EXPECT_ANY_THROW(rasterize(scene, o));
+  o.subpixelBits = -1;
+  EXPECT_ANY_THROW(rasterize(scene, o));
+  o.subpixelBits = 0;  // none: a guard band of 2^20 pixels, as with 8 bits
+  EXPECT_NO_THROW(rasterize(scene, o));
   const Scene wide = testing::makeTriangleScene({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, 8192, 16);
   o.subpixelBits = 16;  // 8192 pixels do not fit a 4096-pixel guard band
   EXPECT_ANY_THROW(rasterize(wide, o));
