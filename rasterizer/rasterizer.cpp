@@ -184,6 +184,7 @@ struct SetupBlock {
   std::vector<ClippedTriangle<Real>> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
   std::vector<std::uint32_t> tileBox;          // per set-up: tileBoxOf()
+  double clippedShift = 0.0;  // the largest rasterShift of the clipped sub-triangles' vertices
 };
 
 template <typename Real>
@@ -315,36 +316,48 @@ struct Pipeline {
     frame.allInside = std::all_of(frame.outcodes.begin(), frame.outcodes.end(), [](unsigned c) { return c == 0; });
   }
 
-  // Without snapping, coverage is exact for the double raster positions (orientation.h), so a
-  // centre can be decided otherwise than the exact projection of the mesh decides it only
-  // within the distance those positions may have moved: setup_formulas.h's boundsOf delta of
-  // each vertex a set-up read (every vertex inside the view volume, every clipped
-  // sub-triangle's), at its largest, doubled for the second-order terms and the clipped
-  // vertices' interpolation. In pixels; after set-up.
-  double unsnappedEdgeBand() const {
-    const double scale = 0.5 * std::max(width, height) * context.clipError;
-    const auto delta = [&](const glm::dvec4& c, const glm::dvec2& r) {
-      const double ndc = std::max(std::fabs(c.x), std::fabs(c.y)) / c.w;
-      return scale * (1.0 + ndc) / c.w + 0x1p-50 * (std::max(std::fabs(r.x), std::fabs(r.y)) + 1.0);
-    };
-    const std::size_t count = frame.clip.size();
-    const int vertexBlocks = int((count + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
-    std::vector<double> largest(std::size_t(vertexBlocks) + frame.blocks.size(), 0.0);
-    parallelFor(int(largest.size()), options.threads, [&](int b) {
-      double most = 0.0;
-      if (b < vertexBlocks) {
+  // How far a vertex's double raster position r may lie from the exact projection of the mesh,
+  // in pixels: setup_formulas.h's boundsOf delta, from its clip position c.
+  double rasterShift(const glm::dvec4& c, const glm::dvec2& r) const {
+    const double ndc = std::max(std::fabs(c.x), std::fabs(c.y)) / c.w;
+    return 0.5 * std::max(width, height) * context.clipError * (1.0 + ndc) / c.w +
+           0x1p-50 * (std::max(std::fabs(r.x), std::fabs(r.y)) + 1.0);
+  }
+
+  // The header's edge band (docs/numerics.md): the distance within which coverage may decide a
+  // centre otherwise than the exact projection of the mesh would, in pixels; after set-up. The
+  // double raster positions may have moved by rasterShift, at the most over the vertices set up,
+  // doubled for the second-order terms and the clipped vertices' interpolation. Without
+  // snapping coverage is exact for those positions, and that is the band; it takes each vertex
+  // inside the view volume in a pass of its own. Snapping adds sqrt(2)/2 grid steps, and the
+  // vertices inside are bounded at once: |ndc| at the guard band (|r| <= (|ndc| + 1) / 2 the
+  // image's side), w at the nearest vertex or the near plane. A clipped sub-triangle's vertices
+  // are taken one by one, in set-up.
+  double edgeBand() const {
+    const double side = std::max(width, height);
+    double shift = 0.0;
+    if (options.subpixelBits == 0) {
+      const std::size_t count = frame.clip.size();
+      const int blocks = int((count + kTrianglesPerBlock - 1) / kTrianglesPerBlock);
+      std::vector<double> largest(std::size_t(blocks), 0.0);
+      parallelFor(blocks, options.threads, [&](int b) {
         const std::size_t end = std::min(count, std::size_t(b + 1) * kTrianglesPerBlock);
+        double most = 0.0;
         for (std::size_t v = std::size_t(b) * kTrianglesPerBlock; v < end; ++v) {
-          if (frame.outcode[v] == 0) most = std::max(most, delta(frame.clip[v], frame.raster[v]));
+          if (frame.outcode[v] == 0) most = std::max(most, rasterShift(frame.clip[v], frame.raster[v]));
         }
-      } else {
-        for (const ClippedTriangle<Real>& t : frame.blocks[std::size_t(b - vertexBlocks)].clipped) {
-          for (int i = 0; i < 3; ++i) most = std::max(most, delta(t.clip[i], t.raster[i]));
-        }
-      }
-      largest[std::size_t(b)] = most;
-    });
-    return largest.empty() ? 0.0 : 2.0 * *std::max_element(largest.begin(), largest.end());
+        largest[std::size_t(b)] = most;
+      });
+      for (double most : largest) shift = std::max(shift, most);
+    } else {
+      const double nearest =
+          frame.nearestW.empty() ? volume.zNear : *std::min_element(frame.nearestW.begin(), frame.nearestW.end());
+      const double w = std::max(nearest, volume.zNear), ndc = volume.guard;
+      shift = 0.5 * side * context.clipError * (1.0 + ndc) / w + 0x1p-50 * (0.5 * (ndc + 1.0) * side + 1.0);
+    }
+    for (const SetupBlock<Real>& block : frame.blocks) shift = std::max(shift, block.clippedShift);
+    const double snapping = options.subpixelBits == 0 ? 0.0 : 0.7072 * std::ldexp(1.0, -options.subpixelBits);
+    return snapping + 2.0 * shift;
   }
 
   glm::dvec2 rasterOf(const glm::dvec4& c) const { return rc::rasterOf(scene.camera, c); }
@@ -491,6 +504,10 @@ struct Pipeline {
       block.clipped.clear();
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
+      block.clippedShift = 0.0;
+      for (const ClippedTriangle<Real>& t : block.clipped) {
+        for (int i = 0; i < 3; ++i) block.clippedShift = std::max(block.clippedShift, rasterShift(t.clip[i], t.raster[i]));
+      }
       block.tileCursor.assign(tiles, 0);
       block.tileBox.resize(block.coverage.size());
       for (std::size_t i = 0; i < block.coverage.size(); ++i) {
@@ -631,10 +648,7 @@ FrameFacts renderFrame(const Scene& scene, const RasterOptions& options, Frame<R
     }
   });
   times.tilesMs = millisecondsSince(t0);
-  // Snapping moves each vertex by at most sqrt(2)/2 grid steps, and so every edge; the double
-  // raster positions themselves are far more accurate than that.
-  const double band = options.subpixelBits == 0 ? p.unsnappedEdgeBand() : 0.7072 * std::ldexp(1.0, -options.subpixelBits);
-  return {p.context.cullBackFaces, band};
+  return {p.context.cullBackFaces, p.edgeBand()};
 }
 
 void checkSubpixelBits(const RasterOptions& options) {
@@ -697,7 +711,7 @@ void Rasterizer::render(const Scene& scene, Framebuffer& target) {
   target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
   target.attributes["rastercheck.cull"] = facts.culled ? "back" : "none";
   char band[32];
-  std::snprintf(band, sizeof band, "%.6g", facts.edgeBand);
+  std::snprintf(band, sizeof band, "%.17g", facts.edgeBand);  // exact: compare reads it back
   target.attributes[channels::header::kEdgeBand] = band;
   target.attributes[channels::header::kScene] = scene.name;
   target.attributes[channels::header::kCamera] = scene.camera.describe();

@@ -208,6 +208,11 @@ std::array<std::int64_t, 2> Oracle::snapped(std::size_t v, int& ambiguous) const
           roundEven((Q(1) - c.y / c.w) * Q(scene_.camera.height(), 2) * scale, ambiguous)};
 }
 
+std::array<Q, 2> Oracle::raster(std::size_t v) const {
+  const Clip& c = clip_[v];
+  return {(c.x / c.w + 1) * Q(scene_.camera.width(), 2), (Q(1) - c.y / c.w) * Q(scene_.camera.height(), 2)};
+}
+
 std::array<double, 3> Oracle::projected(std::size_t t, int x, int y, bool& defined) const {
   const glm::uvec3 tri = scene_.mesh.triangles[t];
   // Pixel centre in NDC, exactly: the inverse of the raster mapping.

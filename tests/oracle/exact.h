@@ -47,6 +47,8 @@ class Oracle {
   // The snapped raster position of vertex v (fixed point, `bits` fraction bits), for vertices
   // the camera sees without clipping; counts a tie-adjacent rounding in `ambiguous`.
   std::array<std::int64_t, 2> snapped(std::size_t v, int& ambiguous) const;
+  // The exact raster position of vertex v (in front of the camera), before any snapping.
+  std::array<Q, 2> raster(std::size_t v) const;
 
   // (b) Exact barycentrics of pixel (x, y)'s centre for triangle t, rounded to double:
   // through the projection (homogeneous 2D barycentrics of the clip-space vertices), and along

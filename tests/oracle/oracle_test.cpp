@@ -123,6 +123,34 @@ TEST_P(HardCase, UnsnappedCoverageEqualsTheExactRuleOnItsRasterPositions) {
   }
 }
 
+// The header's edge band holds what moves coverage's edges off the exact projection: snapping's
+// sqrt(2)/2 grid steps, and twice the distance a double raster position may lie from the exact
+// one. Each vertex inside the view volume, in rationals, lies within that distance.
+TEST_P(HardCase, EdgeBandCoversTheRasterPositionsDistanceFromTheExactProjection) {
+  const Scene scene = makeBuiltinScene(GetParam());
+  const Camera& camera = scene.camera;
+  const glm::dmat4 m = camera.clipFromWorld();
+  for (int bits : {0, 8}) {
+    RasterOptions options;
+    options.subpixelBits = bits;
+    const double band = std::stod(rasterize(scene, options).attributes.at("rastercheck.edgeBand"));
+    const double shift = 0.5 * (band - (bits == 0 ? 0.0 : 0.7072 * std::ldexp(1.0, -bits)));
+    const Oracle exact(scene, bits == 0 ? 8 : bits);
+    double most = 0.0;
+    for (std::size_t v = 0; v < scene.mesh.vertexCount(); ++v) {
+      const glm::dvec4 c = m * glm::dvec4(glm::dvec3(scene.mesh.positions[v]), 1.0);
+      if (!(c.w >= camera.zNear() && std::fabs(c.x) <= c.w && std::fabs(c.y) <= c.w)) continue;  // in the image's frustum
+      const glm::dvec2 r = oracle::rasterPosition(camera, scene.mesh.positions[v]);
+      const std::array<oracle::Q, 2> e = exact.raster(v);
+      most = std::max({most, std::fabs(oracle::Q(oracle::Q(r.x) - e[0]).get_d()),
+                       std::fabs(oracle::Q(oracle::Q(r.y) - e[1]).get_d())});
+    }
+    EXPECT_LE(most, shift) << GetParam() << " at " << subpixelBitsName(bits) << " bits";
+    std::printf("[oracle] %s: raster positions at most %.3g pixel off the exact projection, the band allows %.3g (%s)\n",
+                GetParam().c_str(), most, shift, subpixelBitsName(bits).c_str());
+  }
+}
+
 // Culling (Culling::kAuto) drops exactly the triangles whose snapped area the oracle finds
 // clockwise from the eye, and only in scenes that declare a closed solid.
 TEST_P(HardCase, CullingDropsExactlyTheSnappedBackFaces) {
