@@ -671,13 +671,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene
       pixels.clear();
       const CoverageSetup<Real>& c = block.coverage[i];
       glm::dvec2 raster[3];
-      if (c.source.clipped < 0) {
-        const glm::uvec3 tri = scene.mesh.triangles[c.source.triangle];
-        raster[0] = frame.raster[tri.x], raster[1] = frame.raster[tri.y], raster[2] = frame.raster[tri.z];
-      } else {
-        const ClippedTriangle<Real>& t = block.clipped[std::size_t(c.source.clipped)];
-        raster[0] = t.raster[0], raster[1] = t.raster[1], raster[2] = t.raster[2];
-      }
+      kernel::rasterOfSetup(c, scene.mesh.triangles.data(), frame.raster.data(), block.clipped.data(), raster);
       kernel::coveredPixelsOf(c, options.subpixelBits, raster, pixels, p.width);
       for (std::uint32_t pixel : pixels) pairs.emplace_back(block.coverage[i].source.triangle, pixel);
     }

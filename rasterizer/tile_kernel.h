@@ -367,15 +367,16 @@ RC_KERNEL_INLINE void coverRowsUnsnapped(const CoverageSetup<Real>& c, const glm
   }
 }
 
-// The unsnapped raster positions of set-up `name`'s vertices: the frame's, or its clipped
-// sub-triangle's.
+// The unsnapped raster positions of set-up c's vertices: the frame's (the mesh's triangles
+// index vertexRaster), or its clipped sub-triangle's among its block's `clipped`.
 template <typename Real>
-RC_KERNEL_INLINE void rasterOfSetup(const Input<Real>& in, std::uint32_t name, const CoverageSetup<Real>& c, glm::dvec2 v[3]) {
+RC_KERNEL_INLINE void rasterOfSetup(const CoverageSetup<Real>& c, const glm::uvec3* triangles, const glm::dvec2* vertexRaster,
+                                    const ClippedTriangle<Real>* clipped, glm::dvec2 v[3]) {
   if (c.source.clipped < 0) {
-    const glm::uvec3 tri = in.triangles[c.source.triangle];
-    v[0] = in.vertexRaster[tri.x], v[1] = in.vertexRaster[tri.y], v[2] = in.vertexRaster[tri.z];
+    const glm::uvec3 tri = triangles[c.source.triangle];
+    v[0] = vertexRaster[tri.x], v[1] = vertexRaster[tri.y], v[2] = vertexRaster[tri.z];
   } else {
-    const ClippedTriangle<Real>& t = in.clipped[name >> kBlockShift][c.source.clipped];
+    const ClippedTriangle<Real>& t = clipped[c.source.clipped];
     v[0] = t.raster[0], v[1] = t.raster[1], v[2] = t.raster[2];
   }
 }
@@ -849,7 +850,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
         forEachCoveredChunk<kAvx2, kWidth>(c, in.subpixelBits, xa, ya, xb, yb, depthTest);
       } else {
         glm::dvec2 v[3];
-        rasterOfSetup(in, name, c, v);
+        rasterOfSetup(c, in.triangles, in.vertexRaster, in.clipped[name >> kBlockShift], v);
         coverRowsUnsnapped<kWidth>(c, v, xa, ya, xb, yb, depthTest);
       }
     }
