@@ -330,7 +330,10 @@ RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits
 // edge, whose vertices have the same raster positions, never both cover a centre and never both
 // miss one between them. v: the unsnapped raster positions. Calls fn as coverRows does, for the
 // rows ya..yb only.
-template <std::size_t kWidth, typename Real, typename Fn>
+//
+// kAvx2Code: called from AVX2 or AVX-512 code, so that anyOf may test a mask in one instruction
+// (the tests call it from baseline code, with the generic test).
+template <std::size_t kWidth, bool kAvx2Code = false, typename Real, typename Fn>
 RC_KERNEL_INLINE void coverRowsUnsnapped(const CoverageSetup<Real>& c, const glm::dvec2 v[3], int xa, int ya, int xb, int yb,
                                          Fn&& fn) {
   const bool positive = c.flags & CoverageSetup<Real>::kPositive;
@@ -352,7 +355,7 @@ RC_KERNEL_INLINE void coverRowsUnsnapped(const CoverageSetup<Real>& c, const glm
         const i64x8 above = split::greater<kWidth>(det, bound), below = split::less<kWidth>(det, -bound);
         i32x8 inside = mask32(positive ? above : below);
         const i32x8 open = mask32(~(above | below)) & mask;
-        if (any(open)) {
+        if (anyOf<kAvx2Code>(open)) {
           const bool topLeft = !((c.flags >> i) & CoverageSetup<Real>::kNotTopLeft);
           for (int k = 0; k < kLanes; ++k) {
             if (!open[k]) continue;
@@ -851,7 +854,7 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
       } else {
         glm::dvec2 v[3];
         rasterOfSetup(c, in.triangles, in.vertexRaster, in.clipped[name >> kBlockShift], v);
-        coverRowsUnsnapped<kWidth>(c, v, xa, ya, xb, yb, depthTest);
+        coverRowsUnsnapped<kWidth, kAvx2>(c, v, xa, ya, xb, yb, depthTest);
       }
     }
   };
