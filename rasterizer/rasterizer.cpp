@@ -262,8 +262,10 @@ struct Pipeline {
     context.width = width;
     context.height = height;
     context.subpixelBits = o.subpixelBits;
-    if (o.subpixelBits == 0) {  // exact orientations, one set-up at a time
-      batchSetup = batch::setupCoverageEach<Real>;
+    if (o.subpixelBits == 0 && isa != KernelIsa::kSse2) {  // its own batch, without int64 lanes
+      batchSetup = batch::setupUnsnappedAvx2;
+    } else if (o.subpixelBits == 0) {
+      batchSetup = batch::setupUnsnappedSse2;
     } else if (isa == KernelIsa::kAvx512) {  // AVX-512 VL and DQ have int64 multiplies, min and max
       batchSetup = batch::setupCoverageAvx512;
     } else if (isa != KernelIsa::kSse2) {

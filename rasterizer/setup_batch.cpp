@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 
+#include "rasterizer/orientation.h"
 #include "rasterizer/setup_formulas.h"
 
 // Vectors never cross a call boundary (tile_kernel.h).
@@ -64,6 +65,93 @@ RC_BATCH_INLINE void gatherVertices(const glm::uvec3 tris[kLanes], const glm::dv
   }
 }
 
+// The flags of four set-ups from their vertices and the lanes whose area is positive:
+// kPositive, and kNotTopLeft << i for each edge i that is not top or left (coverage.h's rule on
+// the signs of a = y_from - y_to and b = x_to - x_from, normalised by the area's sign; the
+// sign of a difference of doubles is exact).
+template <std::size_t kWidth, typename Real>
+RC_BATCH_INLINE i64x4 edgeFlags4(const f64x4 x[3], const f64x4 y[3], const i64x4& positive) {
+  i64x4 flags = positive & std::int64_t(CoverageSetup<Real>::kPositive);
+  for (int i = 0; i < 3; ++i) {
+    const int from = (i + 1) % 3, to = (i + 2) % 3;
+    const f64x4 a = y[from] - y[to], b = x[to] - x[from];
+    const f64x4 ea = split::select<kWidth>(positive, a, -a), eb = split::select<kWidth>(positive, b, -b);
+    const i64x4 topLeft =
+        split::greater<kWidth>(ea, 0.0) | (split::equal<kWidth>(ea, 0.0) & split::greater<kWidth>(eb, 0.0));
+    flags |= ~topLeft & std::int64_t(CoverageSetup<Real>::kNotTopLeft << i);
+  }
+  return flags;
+}
+
+// The rest of setupCoverage for four lanes with their boxes made: the anchor
+// (CoverageSetup::anchorX, anchorY), the depth key plane, and the records of the lanes still
+// accepted. xr, yr: the snapped vertices as integral doubles (zeros without snapping).
+template <std::size_t kWidth, typename Real>
+RC_BATCH_INLINE unsigned finishCoverage4(const f64x4 rx[3], const f64x4 ry[3], const f64x4 w[3], const f64x4& minX,
+                                         const f64x4& minY, const f64x4& maxX, const f64x4& maxY, const f64x4 xr[3],
+                                         const f64x4 yr[3], const i64x4& flags, i64x4 accept, const SetupContext& ctx,
+                                         CoverageSetup<Real> c[kLanes]) {
+  const f64x4 anchorX = minX + floorOf<kWidth>((maxX - minX) * 0.5);
+  const f64x4 anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
+  const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
+  const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
+  accept &= split::notEqual<kWidth>(an.area, 0.0);
+  const formulas::KeyPlane<f64x4> key = formulas::keyPlaneOf(an, ctx);
+
+  // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
+  const auto ints = [&](const f64x4& v) { return toInt32(split::select<kWidth>(accept, v, f64x4{})); };
+  const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
+  i32x4 xi[3], yi[3];
+  for (int i = 0; i < 3; ++i) xi[i] = ints(xr[i]), yi[i] = ints(yr[i]);
+  unsigned accepted = 0;
+  for (int k = 0; k < kLanes; ++k) {
+    if (!accept[k]) continue;
+    accepted |= 1u << k;
+    CoverageSetup<Real>& out = c[k];
+    out.minX = minXi[k], out.minY = minYi[k], out.maxX = maxXi[k], out.maxY = maxYi[k];
+    for (int i = 0; i < 3; ++i) out.x[i] = xi[i][k], out.y[i] = yi[i][k];
+    out.flags = std::uint32_t(flags[k]);
+    out.key0 = Real(key.key0[k]), out.keyX = Real(key.keyX[k]), out.keyY = Real(key.keyY[k]);
+  }
+  return accepted;
+}
+
+// setupCoverage without snapping (setup.cpp's setupUnsnapped) for four lanes: the exact
+// orientation from orientation.h's filter in lanes, and its exact path for the lanes the filter
+// leaves open; the box from the double raster positions (ceil and floor of min - 0.5 and
+// max - 0.5, |raster| below the guard band's 2^21 pixels).
+template <std::size_t kWidth, typename Real>
+RC_BATCH_INLINE unsigned setupUnsnapped4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                                         const SetupContext& ctx, CoverageSetup<Real> c[kLanes]) {
+  f64x4 rx[3], ry[3], w[3];
+  gatherVertices(tris, clip, raster, rx, ry, w);
+  // orientation(v0, v1, v2): the filter, then the exact sign where it cannot decide.
+  const f64x4 left = (rx[0] - rx[2]) * (ry[1] - ry[2]), right = (ry[0] - ry[2]) * (rx[1] - rx[2]);
+  const f64x4 det = left - right;
+  const f64x4 scaled = kOrientationBound * (lanes::absOf(left) + lanes::absOf(right));
+  const f64x4 bound = maxOf<kWidth>(scaled, f64x4{} + kOrientationFloor);
+  i64x4 positive = split::greater<kWidth>(det, bound), negative = split::less<kWidth>(det, -bound);
+  for (int k = 0; k < kLanes; ++k) {
+    if (positive[k] | negative[k]) continue;
+    const int sign = exactOrientation(rx[0][k], ry[0][k], rx[1][k], ry[1][k], rx[2][k], ry[2][k]);
+    positive[k] = sign > 0 ? -1 : 0, negative[k] = sign < 0 ? -1 : 0;
+  }
+  i64x4 accept = ctx.cullBackFaces ? negative : positive | negative;
+  const f64x4 minXr = minOf<kWidth>(rx[0], minOf<kWidth>(rx[1], rx[2]));
+  const f64x4 maxXr = maxOf<kWidth>(rx[0], maxOf<kWidth>(rx[1], rx[2]));
+  const f64x4 minYr = minOf<kWidth>(ry[0], minOf<kWidth>(ry[1], ry[2]));
+  const f64x4 maxYr = maxOf<kWidth>(ry[0], maxOf<kWidth>(ry[1], ry[2]));
+  const f64x4 minX = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>(minXr - 0.5));
+  const f64x4 minY = maxOf<kWidth>(f64x4{}, ceilOf<kWidth>(minYr - 0.5));
+  const f64x4 maxX = minOf<kWidth>(f64x4{} + double(ctx.width - 1), floorOf<kWidth>(maxXr - 0.5));
+  const f64x4 maxY = minOf<kWidth>(f64x4{} + double(ctx.height - 1), floorOf<kWidth>(maxYr - 0.5));
+  accept &= split::lessEqual<kWidth>(minX, maxX) & split::lessEqual<kWidth>(minY, maxY);
+  if (!(accept[0] | accept[1] | accept[2] | accept[3])) return 0u;
+  const i64x4 flags = edgeFlags4<kWidth, Real>(rx, ry, positive);
+  const f64x4 zero[3] = {};
+  return finishCoverage4<kWidth>(rx, ry, w, minX, minY, maxX, maxY, zero, zero, flags, accept, ctx, c);
+}
+
 template <std::size_t kWidth, typename Real>
 RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
                                         const glm::dvec2* raster, const SetupContext& ctx,
@@ -100,19 +188,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
   accept &= split::lessEqual<kWidth>(minX, maxX) & split::lessEqual<kWidth>(minY, maxY);
   if (!(accept[0] | accept[1] | accept[2] | accept[3])) return 0u;
 
-  // Edge functions (coverage.h's makeEdgeFunctions), sign-normalised by the area's sign.
-  const i64x4 positive = split::greater<kWidth>(area, std::int64_t(0));
-  f64x4 ea[3], eb[3];
-  i64x4 flags = positive & std::int64_t(CoverageSetup<Real>::kPositive);
-  for (int i = 0; i < 3; ++i) {
-    const int from = (i + 1) % 3, to = (i + 2) % 3;
-    const f64x4 a = yr[from] - yr[to], b = xr[to] - xr[from];
-    ea[i] = split::select<kWidth>(positive, a, -a);
-    eb[i] = split::select<kWidth>(positive, b, -b);
-    const i64x4 topLeft = split::greater<kWidth>(ea[i], 0.0) |
-                          (split::equal<kWidth>(ea[i], 0.0) & split::greater<kWidth>(eb[i], 0.0));
-    flags |= ~topLeft & std::int64_t(CoverageSetup<Real>::kNotTopLeft << i);
-  }
+  i64x4 flags = edgeFlags4<kWidth, Real>(xr, yr, split::greater<kWidth>(area, std::int64_t(0)));
   // The narrow test, spans clamped to 2^30 so that no product overflows (a span that large
   // already fails it).
   const i64x4 limit = i64x4{} + (std::int64_t(1) << 30), one = i64x4{} + (std::int64_t(1) << bits);
@@ -125,30 +201,7 @@ RC_BATCH_INLINE unsigned setupCoverage4(const glm::uvec3 tris[kLanes], const glm
                        split::less<kWidth>(sy * (sx + 9 * one) + sx * (sy + one) + 1, std::int64_t(1) << 31);
   flags |= narrow & std::int64_t(CoverageSetup<Real>::kNarrow);
 
-  // Anchor (CoverageSetup::anchorX, anchorY) and the depth key plane, as setupCoverage.
-  const f64x4 anchorX = minX + floorOf<kWidth>((maxX - minX) * 0.5);
-  const f64x4 anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
-  const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
-  const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
-  accept &= split::notEqual<kWidth>(an.area, 0.0);
-  const formulas::KeyPlane<f64x4> key = formulas::keyPlaneOf(an, ctx);
-
-  // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.
-  const auto ints = [&](const f64x4& v) { return toInt32(split::select<kWidth>(accept, v, f64x4{})); };
-  const i32x4 minXi = ints(minX), minYi = ints(minY), maxXi = ints(maxX), maxYi = ints(maxY);
-  i32x4 xi[3], yi[3];
-  for (int i = 0; i < 3; ++i) xi[i] = ints(xr[i]), yi[i] = ints(yr[i]);
-  unsigned accepted = 0;
-  for (int k = 0; k < kLanes; ++k) {
-    if (!accept[k]) continue;
-    accepted |= 1u << k;
-    CoverageSetup<Real>& out = c[k];
-    out.minX = minXi[k], out.minY = minYi[k], out.maxX = maxXi[k], out.maxY = maxYi[k];
-    for (int i = 0; i < 3; ++i) out.x[i] = xi[i][k], out.y[i] = yi[i][k];
-    out.flags = std::uint32_t(flags[k]);
-    out.key0 = Real(key.key0[k]), out.keyX = Real(key.keyX[k]), out.keyY = Real(key.keyY[k]);
-  }
-  return accepted;
+  return finishCoverage4<kWidth>(rx, ry, w, minX, minY, maxX, maxY, xr, yr, flags, accept, ctx, c);
 }
 
 template <std::size_t kWidth, typename Real>
@@ -209,6 +262,27 @@ __attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris
   return setupCoverage4<32>(tris, clip, raster, ctx, c);
 }
 
+// The entry points are overloads, one per target and precision, as above: GCC 12 drops the
+// target attribute of a function template's explicit instantiation (its AVX2 one came out with
+// no ymm register).
+unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {
+  return setupUnsnapped4<16>(tris, clip, raster, ctx, c);
+}
+unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {
+  return setupUnsnapped4<16>(tris, clip, raster, ctx, c);
+}
+__attribute__((target("avx2"))) unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                            const glm::dvec2* raster, const SetupContext& ctx,
+                                                            CoverageSetup<float> c[kLanes]) {
+  return setupUnsnapped4<32>(tris, clip, raster, ctx, c);
+}
+__attribute__((target("avx2"))) unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
+                                                            const glm::dvec2* raster, const SetupContext& ctx,
+                                                            CoverageSetup<double> c[kLanes]) {
+  return setupUnsnapped4<32>(tris, clip, raster, ctx, c);
+}
 
 void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<float>* const c[kLanes],
@@ -232,23 +306,6 @@ __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes
                                                     ShadeSetup<double>* const s[kLanes]) {
   setupShade4<32>(tris, clip, raster, ctx, c, s);
 }
-
-template <typename Real>
-unsigned setupCoverageEach(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<Real> c[kLanes]) {
-  unsigned accepted = 0;
-  for (int k = 0; k < kLanes; ++k) {
-    const glm::uvec3 t = tris[k];
-    const glm::dvec4 v[3] = {clip[t.x], clip[t.y], clip[t.z]};
-    const glm::dvec2 r[3] = {raster[t.x], raster[t.y], raster[t.z]};
-    if (setupCoverage(v, r, ctx, c[k])) accepted |= 1u << k;
-  }
-  return accepted;
-}
-template unsigned setupCoverageEach<float>(const glm::uvec3[kLanes], const glm::dvec4*, const glm::dvec2*,
-                                           const SetupContext&, CoverageSetup<float>[kLanes]);
-template unsigned setupCoverageEach<double>(const glm::uvec3[kLanes], const glm::dvec4*, const glm::dvec2*,
-                                            const SetupContext&, CoverageSetup<double>[kLanes]);
 
 #define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
 RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,

@@ -3,7 +3,8 @@
 //
 // Each lane runs setupCoverage's operations in the same order (no FMA), so every record it
 // accepts has the same bits as setupCoverage's, and every ShadeSetup as setupShade's
-// (SetupBatch.*BitForBit).
+// (SetupBatch.*BitForBit), with snapping or without (subpixelBits 0: exact orientations, the
+// lanes that the filter leaves open decided one by one).
 // Compiled for the x86-64 baseline and with the AVX2 target; the coverage half also with
 // AVX-512 (one instruction per int64 multiply, minimum and maximum), which the AVX-512 tile
 // kernels' level runs (docs/rasterizer.md, "SIMD and instruction sets").
@@ -20,7 +21,8 @@ constexpr int kLanes = 4;
 
 // The triangles tris[0..4), given as vertex indices into per-vertex clip positions and raster
 // positions, each vertex inside the view volume (outcode 0). Writes c[k] for every lane k that
-// setupCoverage would accept, and returns those lanes as bits (bit k for lane k).
+// setupCoverage would accept, and returns those lanes as bits (bit k for lane k). With
+// snapping (ctx.subpixelBits 1 to 16); setupUnsnapped* below take 0.
 unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
 unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
@@ -29,6 +31,17 @@ unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip
                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
 unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
+
+// The same without snapping (ctx.subpixelBits 0: setup.cpp's setupUnsnapped), kept apart so
+// that the snapped batch holds no test of the setting.
+unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
+unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
+unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
+unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
+                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
 
 // setupShade for four whole triangles (innerEdges 0, not clipped) with their accepted
 // CoverageSetups: s[k] from tris[k] and *c[k], all but the triangle and clipMap fields.
@@ -44,12 +57,6 @@ void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const
 void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
                     ShadeSetup<double>* const s[kLanes]);
-
-// setupCoverage (setup.h) lane by lane, with the same contract: the set-ups the batch formulas
-// do not make, those without snapping (subpixelBits 0, exact orientations in setup.cpp).
-template <typename Real>
-unsigned setupCoverageEach(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<Real> c[kLanes]);
 
 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                              const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
