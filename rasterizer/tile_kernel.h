@@ -324,8 +324,9 @@ RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits
 // Coverage without snapping (subpixelBits 0, --subpixel-bits none): edge i's E_i at a pixel
 // centre c is the set-up's orientation sign times orientation(from, to, c) (orientation.h),
 // decided exactly: its filter in eight lanes of double, the same operations in the same order,
-// and its exact path for the lanes the filter leaves open (centres on the edge's line, or within
-// about 1e-16 of its length of it). A centre exactly on an edge is inside when the edge is top or
+// for the three edges at once; a chunk with a lane that the filter leaves open for some edge
+// (a centre on the edge's line, or within about 1e-16 of its length of it) takes orientation()
+// lane by lane, filter and exact path. A centre exactly on an edge is inside when the edge is top or
 // left (the flags), as coverage.h decides it for snapped vertices: so two triangles that share an
 // edge, whose vertices have the same raster positions, never both cover a centre and never both
 // miss one between them. v: the unsnapped raster positions. Calls fn as coverRows does, for the
@@ -336,34 +337,55 @@ RC_KERNEL_INLINE void forEachCoveredChunk(const CoverageSetup<Real>& c, int bits
 template <std::size_t kWidth, bool kAvx2Code = false, typename Real, typename Fn>
 RC_KERNEL_INLINE void coverRowsUnsnapped(const CoverageSetup<Real>& c, const glm::dvec2 v[3], int xa, int ya, int xb, int yb,
                                          Fn&& fn) {
+  // Each edge's ends, swapped where the orientation is negative: the determinant of (b, a, c)
+  // is that of (a, b, c) negated, bit for bit (its products are the same, their difference
+  // turned round), so inside is where it is positive for every edge.
   const bool positive = c.flags & CoverageSetup<Real>::kPositive;
+  double ax[3], ay[3], bx[3], by[3];
+  bool topLeft[3];
+  for (int i = 0; i < 3; ++i) {
+    glm::dvec2 a = v[(i + 1) % 3], b = v[(i + 2) % 3];
+    if (!positive) std::swap(a, b);
+    ax[i] = a.x, ay[i] = a.y, bx[i] = b.x, by[i] = b.y;
+    topLeft[i] = !((c.flags >> i) & CoverageSetup<Real>::kNotTopLeft);
+  }
   const f64x8 lane{0, 1, 2, 3, 4, 5, 6, 7};
   const auto magnitude = [](const f64x8& d) __attribute__((always_inline)) {
     return f64x8(i64x8(d) & std::numeric_limits<std::int64_t>::max());
   };
   for (int y = ya; y <= yb; ++y) {
     const double cy = double(y) + 0.5;
+    const double ayc[3] = {ay[0] - cy, ay[1] - cy, ay[2] - cy}, byc[3] = {by[0] - cy, by[1] - cy, by[2] - cy};
     for (int x = xa, column = 0; x <= xb; x += kLanes, ++column) {
       const f64x8 cx = (double(x) + 0.5) + lane;
-      i32x8 mask = split::lessEqual<kWidth>(iota32() + x, xb);
+      const i32x8 limit = split::lessEqual<kWidth>(iota32() + x, xb);
+      // The filter for the three edges: inside where every determinant clears its bound, and
+      // decided where every one's magnitude does.
+      // Each comparison narrowed at once: GCC 12 lowers an and of two 512-bit comparisons, or a
+      // negated one, lane by lane.
+      i32x8 inside = limit, decided = limit;
+#pragma GCC unroll 3
       for (int i = 0; i < 3; ++i) {
-        const glm::dvec2 a = v[(i + 1) % 3], b = v[(i + 2) % 3];
-        const f64x8 left = (a.x - cx) * (b.y - cy), right = (a.y - cy) * (b.x - cx), det = left - right;
+        const f64x8 left = (ax[i] - cx) * byc[i], right = ayc[i] * (bx[i] - cx), det = left - right;
         const f64x8 scaled = kOrientationBound * (magnitude(left) + magnitude(right));
         const f64x8 bound = split::select<kWidth>(split::greater<kWidth>(scaled, kOrientationFloor), scaled,
                                                   f64x8{} + kOrientationFloor);
-        const i64x8 above = split::greater<kWidth>(det, bound), below = split::less<kWidth>(det, -bound);
-        i32x8 inside = mask32(positive ? above : below);
-        const i32x8 open = mask32(~(above | below)) & mask;
-        if (anyOf<kAvx2Code>(open)) {
-          const bool topLeft = !((c.flags >> i) & CoverageSetup<Real>::kNotTopLeft);
-          for (int k = 0; k < kLanes; ++k) {
-            if (!open[k]) continue;
-            const int e = exactOrientation(a.x, a.y, b.x, b.y, cx[k], cy) * (positive ? 1 : -1);
-            inside[k] = e > 0 || (e == 0 && topLeft) ? -1 : 0;
+        inside &= mask32(split::greater<kWidth>(det, bound));
+        decided &= mask32(split::greater<kWidth>(magnitude(det), bound));
+      }
+      i32x8 mask = inside;
+      if (anyOf<kAvx2Code>(decided ^ limit)) {
+        // Rare: a centre on an edge's line or within about 1e-16 of its length of it. The
+        // lane is decided by orientation.h's predicate (the same filter, then the exact sign).
+        for (int k = 0; k < kLanes; ++k) {
+          if (!limit[k]) continue;
+          bool in = true;
+          for (int i = 0; i < 3 && in; ++i) {
+            const int e = orientation(ax[i], ay[i], bx[i], by[i], cx[k], cy);
+            in = e > 0 || (e == 0 && topLeft[i]);
           }
+          mask[k] = in ? -1 : 0;
         }
-        mask &= inside;
       }
       fn(x, y, column, mask);
     }
