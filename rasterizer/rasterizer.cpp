@@ -124,7 +124,8 @@ struct VertexFacts {
 // 1 thread, whose lines are its own, 2.8 up to 3.5 ms). Set-up reads them back no slower.
 void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t end, const glm::dmat4& m,
                      const ClipVolume<double>& volume, const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
-                     std::uint8_t* outcode, VertexFacts& facts) {
+                     std::uint8_t* outcode, VertexFacts& factsOut) {
+  VertexFacts facts = factsOut;  // in registers: the outcode stores may alias factsOut
   for (std::size_t i = begin; i < end; ++i) {
     const glm::dvec3 p(positions[i]);
     const glm::dvec4 c = m * glm::dvec4(p, 1.0);
@@ -139,6 +140,7 @@ void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t 
     facts.largest = std::max({facts.largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
     facts.nearestW = std::min(facts.nearestW, c.w);
   }
+  factsOut = facts;
 }
 
 // transformScalar with AVX2, one vertex per 4-lane register. Every value takes the same IEEE
