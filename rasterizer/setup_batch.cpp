@@ -243,46 +243,27 @@ RC_BATCH_INLINE void setupShade4(const glm::uvec3 tris[kLanes], const glm::dvec4
 
 }  // namespace
 
-unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4<16>(tris, clip, raster, ctx, c);
-}
-unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4<16>(tris, clip, raster, ctx, c);
-}
-__attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                                           const glm::dvec2* raster, const SetupContext& ctx,
-                                                           CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4<32>(tris, clip, raster, ctx, c);
-}
-__attribute__((target("avx2"))) unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                                           const glm::dvec2* raster, const SetupContext& ctx,
-                                                           CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4<32>(tris, clip, raster, ctx, c);
-}
-
-// The entry points are overloads, one per target and precision, as above: GCC 12 drops the
-// target attribute of a function template's explicit instantiation (its AVX2 one came out with
-// no ymm register).
-unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {
-  return setupUnsnapped4<16>(tris, clip, raster, ctx, c);
-}
-unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {
-  return setupUnsnapped4<16>(tris, clip, raster, ctx, c);
-}
-__attribute__((target("avx2"))) unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                                            const glm::dvec2* raster, const SetupContext& ctx,
-                                                            CoverageSetup<float> c[kLanes]) {
-  return setupUnsnapped4<32>(tris, clip, raster, ctx, c);
-}
-__attribute__((target("avx2"))) unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                                            const glm::dvec2* raster, const SetupContext& ctx,
-                                                            CoverageSetup<double> c[kLanes]) {
-  return setupUnsnapped4<32>(tris, clip, raster, ctx, c);
-}
+// The entry points are overloads, one per target and precision: GCC 12 drops the target
+// attribute of a function template's explicit instantiation (an AVX2 one came out with no ymm
+// register). RC_COVERAGE_ENTRY defines a name's two, for float and double records.
+#define RC_COVERAGE_ENTRY(kTarget, name, body, kWidth)                                                        \
+  kTarget unsigned name(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,      \
+                        const SetupContext& ctx, CoverageSetup<float> c[kLanes]) {                            \
+    return body<kWidth>(tris, clip, raster, ctx, c);                                                          \
+  }                                                                                                           \
+  kTarget unsigned name(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,      \
+                        const SetupContext& ctx, CoverageSetup<double> c[kLanes]) {                           \
+    return body<kWidth>(tris, clip, raster, ctx, c);                                                          \
+  }
+#define RC_BATCH_BASELINE
+#define RC_BATCH_AVX2 __attribute__((target("avx2")))
+#define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
+RC_COVERAGE_ENTRY(RC_BATCH_BASELINE, setupCoverageSse2, setupCoverage4, 16)
+RC_COVERAGE_ENTRY(RC_BATCH_AVX2, setupCoverageAvx2, setupCoverage4, 32)
+RC_COVERAGE_ENTRY(RC_BATCH_AVX512, setupCoverageAvx512, setupCoverage4, 64)
+RC_COVERAGE_ENTRY(RC_BATCH_BASELINE, setupUnsnappedSse2, setupUnsnapped4, 16)
+RC_COVERAGE_ENTRY(RC_BATCH_AVX2, setupUnsnappedAvx2, setupUnsnapped4, 32)
+#undef RC_COVERAGE_ENTRY
 
 void setupShadeSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<float>* const c[kLanes],
@@ -305,18 +286,6 @@ __attribute__((target("avx2"))) void setupShadeAvx2(const glm::uvec3 tris[kLanes
                                                     const CoverageSetup<double>* const c[kLanes],
                                                     ShadeSetup<double>* const s[kLanes]) {
   setupShade4<32>(tris, clip, raster, ctx, c, s);
-}
-
-#define RC_BATCH_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw")))
-RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                             const glm::dvec2* raster, const SetupContext& ctx,
-                                             CoverageSetup<float> c[kLanes]) {
-  return setupCoverage4<64>(tris, clip, raster, ctx, c);
-}
-RC_BATCH_AVX512 unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip,
-                                             const glm::dvec2* raster, const SetupContext& ctx,
-                                             CoverageSetup<double> c[kLanes]) {
-  return setupCoverage4<64>(tris, clip, raster, ctx, c);
 }
 
 }  // namespace rc::batch

@@ -21,27 +21,22 @@ constexpr int kLanes = 4;
 
 // The triangles tris[0..4), given as vertex indices into per-vertex clip positions and raster
 // positions, each vertex inside the view volume (outcode 0). Writes c[k] for every lane k that
-// setupCoverage would accept, and returns those lanes as bits (bit k for lane k). With
-// snapping (ctx.subpixelBits 1 to 16); setupUnsnapped* below take 0.
-unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
-unsigned setupCoverageSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
-unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
-unsigned setupCoverageAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                           const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
-
-// The same without snapping (ctx.subpixelBits 0: setup.cpp's setupUnsnapped), kept apart so
-// that the snapped batch holds no test of the setting.
-unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
-unsigned setupUnsnappedSse2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
-unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
-unsigned setupUnsnappedAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                            const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
+// setupCoverage would accept, and returns those lanes as bits (bit k for lane k). Each name has
+// an overload for float and one for double records.
+#define RC_COVERAGE_BATCH(name)                                                                              \
+  unsigned name(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,            \
+                const SetupContext& ctx, CoverageSetup<float> c[kLanes]);                                    \
+  unsigned name(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,            \
+                const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
+// With snapping (ctx.subpixelBits 1 to 16).
+RC_COVERAGE_BATCH(setupCoverageSse2)
+RC_COVERAGE_BATCH(setupCoverageAvx2)
+RC_COVERAGE_BATCH(setupCoverageAvx512)  // one instruction per int64 multiply, minimum and maximum
+// Without snapping (ctx.subpixelBits 0: setup.cpp's setupUnsnapped), kept apart so that the
+// snapped batch holds no test of the setting. No AVX-512 build: it has no int64 lanes.
+RC_COVERAGE_BATCH(setupUnsnappedSse2)
+RC_COVERAGE_BATCH(setupUnsnappedAvx2)
+#undef RC_COVERAGE_BATCH
 
 // setupShade for four whole triangles (innerEdges 0, not clipped) with their accepted
 // CoverageSetups: s[k] from tris[k] and *c[k], all but the triangle and clipMap fields.
@@ -57,10 +52,5 @@ void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const
 void setupShadeAvx2(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
                     const SetupContext& ctx, const CoverageSetup<double>* const c[kLanes],
                     ShadeSetup<double>* const s[kLanes]);
-
-unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                             const SetupContext& ctx, CoverageSetup<float> c[kLanes]);
-unsigned setupCoverageAvx512(const glm::uvec3 tris[kLanes], const glm::dvec4* clip, const glm::dvec2* raster,
-                             const SetupContext& ctx, CoverageSetup<double> c[kLanes]);
 
 }  // namespace rc::batch
