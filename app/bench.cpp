@@ -22,18 +22,6 @@
 namespace rc::app {
 namespace {
 
-std::string xml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
 // EXR writing takes about a second a frame (ZIP): it is timed at most this many times.
 constexpr int kExrRuns = 3;
 
@@ -63,42 +51,55 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+std::string benchSettingName(Interpolation mode, Precision precision, int subpixelBits) {
+  return std::string(mode == Interpolation::kAffine ? "affine" : "perspective") +
+         (precision == Precision::kDouble ? "-double-" : "-float-") +
+         (subpixelBits == 0 ? std::string("nosnap") : std::to_string(subpixelBits) + "bit");
+}
+
 std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   const int threads = resolveThreadCount(base.threads);
-  const auto make = [&](const char* name, Interpolation mode, Precision precision, int bits, int t, bool isDefault) {
+  const auto make = [&](Interpolation mode, Precision precision, int bits, int t, const char* suffix, bool isDefault) {
     RasterOptions o = base;
     o.interpolation = mode;
     o.precision = precision;
     o.subpixelBits = bits;
     o.threads = t;
-    return BenchSetting{name, o, isDefault};
+    return BenchSetting{benchSettingName(mode, precision, bits) + suffix, o, isDefault};
   };
-  std::vector<BenchSetting> settings = {
-      make("perspective-float-8bit", Interpolation::kPerspective, Precision::kFloat, 8, threads, true),
-      make("affine-float-8bit", Interpolation::kAffine, Precision::kFloat, 8, threads, false),
-      make("perspective-double-8bit", Interpolation::kPerspective, Precision::kDouble, 8, threads, false),
-      make("perspective-float-4bit", Interpolation::kPerspective, Precision::kFloat, 4, threads, false),
-      make("perspective-float-16bit", Interpolation::kPerspective, Precision::kFloat, 16, threads, false),
-      make("perspective-float-nosnap", Interpolation::kPerspective, Precision::kFloat, 0, threads, false),
-      make("perspective-float-8bit-1thread", Interpolation::kPerspective, Precision::kFloat, 8, 1, false)};
+  constexpr Interpolation kPersp = Interpolation::kPerspective;
+  constexpr Precision kFloat = Precision::kFloat;
+  std::vector<BenchSetting> settings = {make(kPersp, kFloat, 8, threads, "", true),
+                                        make(Interpolation::kAffine, kFloat, 8, threads, "", false),
+                                        make(kPersp, Precision::kDouble, 8, threads, "", false),
+                                        make(kPersp, kFloat, 4, threads, "", false),
+                                        make(kPersp, kFloat, 16, threads, "", false),
+                                        make(kPersp, kFloat, 0, threads, "", false),
+                                        make(kPersp, kFloat, 8, 1, "-1thread", false)};
   // What the SIMD width and the four diagnostic channels cost: the same bits (respectively
   // the same channels less four), so the same error.
-  BenchSetting sse2 = make("perspective-float-8bit-sse2", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+  BenchSetting sse2 = make(kPersp, kFloat, 8, threads, "-sse2", false);
   sse2.raster.isa = KernelIsa::kSse2;
   settings.push_back(sse2);
   if (resolveKernelIsa(base.isa) == KernelIsa::kAvx512) {  // what the 512-bit registers buy
-    BenchSetting avx2 = make("perspective-float-8bit-avx2", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+    BenchSetting avx2 = make(kPersp, kFloat, 8, threads, "-avx2", false);
     avx2.raster.isa = KernelIsa::kAvx2;
     settings.push_back(avx2);
   }
-  BenchSetting lean = make("perspective-float-8bit-nodiag", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+  BenchSetting lean = make(kPersp, kFloat, 8, threads, "-nodiag", false);
   lean.raster.diagnostics = false;
   settings.push_back(lean);
   // What culling back faces saves where the scene allows it (Culling::kAuto); elsewhere this row
   // draws the same triangles as the default.
-  BenchSetting all = make("perspective-float-8bit-nocull", Interpolation::kPerspective, Precision::kFloat, 8, threads, false);
+  BenchSetting all = make(kPersp, kFloat, 8, threads, "-nocull", false);
   all.raster.culling = Culling::kNone;
   settings.push_back(all);
+  // The combination the command line names (--mode, --precision, --subpixel-bits), where the
+  // sweep above does not have it: bench times it too rather than ignore it.
+  const std::string asked = benchSettingName(base.interpolation, base.precision, base.subpixelBits);
+  if (std::none_of(settings.begin(), settings.end(), [&](const BenchSetting& s) { return s.name == asked; })) {
+    settings.push_back(make(base.interpolation, base.precision, base.subpixelBits, threads, "", false));
+  }
   return settings;
 }
 
@@ -306,6 +307,7 @@ BenchResults readBenchJson(const std::string& path) {
       r.width = j.at("width").get<int>();
       r.height = j.at("height").get<int>();
       r.threads = j.at("threads").get<int>();
+      r.runs = j.value("runs", 0);
       r.rasterMs = j.at("raster_ms").get<double>();
       r.storeFloorMs = j.value("store_floor_ms", 0.0);
       r.rasterIsa = j.value("raster_isa", std::string());
@@ -316,8 +318,9 @@ BenchResults readBenchJson(const std::string& path) {
       r.baryMax = j.at("bary_max_error").get<double>();
       r.baryP999 = j.at("bary_p999_error").get<double>();
       r.disagreementFraction = j.at("disagreement_fraction").get<double>();
-      if (!(r.rasterMs > 0) || !std::isfinite(r.rasterMs) || !(r.baryP999 >= 0) || !std::isfinite(r.baryP999)) {
-        throw badInput(at, "raster_ms must be > 0 and bary_p999_error >= 0, both finite");
+      if (!(r.rasterMs > 0) || !std::isfinite(r.rasterMs) || !(r.baryP999 >= 0) || !std::isfinite(r.baryP999) ||
+          !(r.disagreementFraction >= 0) || !std::isfinite(r.disagreementFraction)) {
+        throw badInput(at, "raster_ms must be > 0, bary_p999_error and disagreement_fraction >= 0, all finite");
       }
       rows.push_back(r);
     } catch (const nlohmann::json::exception& e) {
@@ -366,77 +369,6 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
     out << line;
   }
   return out.str();
-}
-
-std::string benchChartSvg(const std::vector<BenchRow>& rows) {
-  // Errors of exactly 0 (the double path) are drawn at the floor of the error axis.
-  constexpr double kErrorFloor = 1e-9;
-  double tMin = 1e30, tMax = 0, eMin = 1e30, eMax = 0;
-  for (const BenchRow& r : rows) {
-    tMin = std::min(tMin, r.rasterMs);
-    tMax = std::max(tMax, r.rasterMs);
-    eMin = std::min(eMin, std::max(r.baryP999, kErrorFloor));
-    eMax = std::max(eMax, std::max(r.baryP999, kErrorFloor));
-  }
-  const double lt0 = std::floor(std::log10(tMin)), lt1 = std::ceil(std::log10(tMax)) + (tMax == tMin);
-  const double le0 = std::floor(std::log10(eMin)), le1 = std::ceil(std::log10(eMax)) + (eMax == eMin);
-  const int W = 760, H = 480, left = 80, right = 220, top = 40, bottom = 60;
-  const auto x = [&](double ms) { return left + (std::log10(ms) - lt0) / (lt1 - lt0) * (W - left - right); };
-  const auto y = [&](double e) {
-    return H - bottom - (std::log10(std::max(e, kErrorFloor)) - le0) / (le1 - le0) * (H - top - bottom);
-  };
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-      << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << left << "\" y=\"24\" font-size=\"15\">rasterizer frame time against barycentric error "
-      << "(p99.9, vs reference)</text>\n";
-  for (double d = lt0; d <= lt1; ++d) {
-    svg << "<line x1=\"" << x(std::pow(10, d)) << "\" y1=\"" << top << "\" x2=\"" << x(std::pow(10, d)) << "\" y2=\""
-        << H - bottom << "\" stroke=\"#ddd\"/><text x=\"" << x(std::pow(10, d)) - 12 << "\" y=\"" << H - bottom + 16
-        << "\">1e" << int(d) << "</text>\n";
-  }
-  for (double d = le0; d <= le1; ++d) {
-    svg << "<line x1=\"" << left << "\" y1=\"" << y(std::pow(10, d)) << "\" x2=\"" << W - right << "\" y2=\""
-        << y(std::pow(10, d)) << "\" stroke=\"#ddd\"/><text x=\"" << left - 40 << "\" y=\"" << y(std::pow(10, d)) + 4
-        << "\">1e" << int(d) << "</text>\n";
-  }
-  svg << "<text x=\"" << (left + W - right) / 2 - 40 << "\" y=\"" << H - 20 << "\">frame time (ms, log)</text>\n"
-      << "<text x=\"16\" y=\"" << (top + H - bottom) / 2 << "\" transform=\"rotate(-90 16 " << (top + H - bottom) / 2
-      << ")\">error (log; 0 drawn at 1e-9)</text>\n";
-  static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-  std::map<std::string, int> series;
-  for (const BenchRow& r : rows) series.emplace(r.scene, int(series.size()));
-  for (const auto& [scene, index] : series) {
-    std::vector<const BenchRow*> points;
-    for (const BenchRow& r : rows) {
-      if (r.scene == scene) points.push_back(&r);
-    }
-    // Pareto front: no other setting of this scene is at least as fast and at least as accurate.
-    std::vector<const BenchRow*> front;
-    for (const BenchRow* p : points) {
-      const bool dominated = std::any_of(points.begin(), points.end(), [&](const BenchRow* q) {
-        return q != p && q->rasterMs <= p->rasterMs && q->baryP999 <= p->baryP999 &&
-               (q->rasterMs < p->rasterMs || q->baryP999 < p->baryP999);
-      });
-      if (!dominated) front.push_back(p);
-    }
-    std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->rasterMs < b->rasterMs; });
-    const char* colour = kColours[index % 6];
-    svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-dasharray=\"4 3\" points=\"";
-    for (const BenchRow* p : front) svg << x(p->rasterMs) << "," << y(p->baryP999) << " ";
-    svg << "\"/>\n";
-    for (const BenchRow* p : points) {
-      svg << "<circle cx=\"" << x(p->rasterMs) << "\" cy=\"" << y(p->baryP999) << "\" r=\"" << (p->isDefault ? 6 : 4)
-          << "\" fill=\"" << colour << "\"><title>" << xml(p->scene) << " " << p->setting << ": " << p->rasterMs
-          << " ms, p99.9 " << p->baryP999 << "</title></circle>\n";
-    }
-    svg << "<text x=\"" << W - right + 12 << "\" y=\"" << top + 16 + index * 18 << "\" fill=\"" << colour << "\">"
-        << xml(scene) << "</text>\n";
-  }
-  svg << "<text x=\"" << W - right + 12 << "\" y=\"" << top + 30 + int(series.size()) * 18
-      << "\" fill=\"#444\">dashed: Pareto front</text>\n<text x=\"" << W - right + 12 << "\" y=\""
-      << top + 48 + int(series.size()) * 18 << "\" fill=\"#444\">large dot: default</text>\n</svg>\n";
-  return svg.str();
 }
 
 }  // namespace rc::app

@@ -21,8 +21,11 @@ struct BenchSetting {
 // The settings bench sweeps, from the command line's rasterizer options: the default, affine,
 // double precision, 4 and 16 subpixel bits, the default on one thread (the thread-scaling
 // ratio), with the SSE2 kernels (what SIMD width buys; and the AVX2 ones where the default
-// resolves to AVX-512), without the diagnostic channels and without culling.
+// resolves to AVX-512), without the diagnostic channels and without culling; and last the
+// combination of mode, precision and subpixel bits that `base` names, where it is none of those.
 std::vector<BenchSetting> benchSettings(const RasterOptions& base);
+// "perspective-float-8bit", "affine-double-nosnap", ...: a sweep row's name before its suffix.
+std::string benchSettingName(Interpolation mode, Precision precision, int subpixelBits);
 
 struct BenchRow {
   std::string scene, setting;
@@ -76,8 +79,5 @@ struct BenchResults {
 // Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer.
 BenchResults readBenchJson(const std::string& path);
 std::string benchCsv(const std::vector<BenchRow>& rows);
-// Frame time against p99.9 barycentric error on log axes, one series per scene, the Pareto
-// front (no other setting both faster and more accurate) marked.
-std::string benchChartSvg(const std::vector<BenchRow>& rows);
 
 }  // namespace rc::app

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/bench.h"
+#include "app/bench_chart.h"
 #include "app/commands.h"
 #include "scenes/registry.h"
 #include "app/progress.h"
@@ -32,6 +33,7 @@ int runBenchCommand(BenchArgs& args) {
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
+  if (!args.chart.empty()) chartFormatOf(args.chart);  // a name that is neither .svg nor .png fails now
   for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
     if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes
   }
@@ -66,9 +68,12 @@ int runBenchCommand(BenchArgs& args) {
               "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
               "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
               "  --json adds stage times\n");
+  // Everything is made before anything is written, so that a failure (the chart's font, say)
+  // leaves no file of a partial set behind.
+  const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
   if (!args.json.empty()) writeTextFile(args.json, benchJson(rows, machine));
   if (!args.csv.empty()) writeTextFile(args.csv, benchCsv(rows));
-  if (!args.chart.empty()) writeTextFile(args.chart, benchChartSvg(rows));
+  if (!args.chart.empty()) writeBenchChart(chart, args.chart);
   return 0;
 }
 
@@ -83,7 +88,7 @@ void registerBench(CLI::App& root, Action& action) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md)");
   command->add_option("--csv", args->csv, "write the rows as CSV");
-  command->add_option("--chart", args->chart, "write frame time against error as an SVG chart");
+  command->add_option("--chart", args->chart, "write frame time against error as a chart: FILE.svg or FILE.png");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   command->get_option("--embree-isa")

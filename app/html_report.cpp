@@ -6,13 +6,13 @@
 #include <sstream>
 
 #include "app/bench.h"
+#include "app/bench_chart.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
 
 namespace rc::app {
-namespace {
 
-std::string escape(const std::string& text) {
+std::string escapeMarkup(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
@@ -26,6 +26,8 @@ std::string escape(const std::string& text) {
   }
   return out;
 }
+
+namespace {
 
 // Image file names are stems we made (alphanumerics, '-', '_', '.'); still, percent-encode
 // anything else so a name can never break out of the attribute.
@@ -62,7 +64,7 @@ th:first-child, td:first-child { text-align: left; }
 
 void sceneSection(std::ostringstream& html, const ReportScene& s) {
   const CompareReport& r = s.report;
-  html << "<section class=\"scene\">\n<h2>" << escape(s.name) << " <span class=\"" << (r.pass ? "pass" : "fail")
+  html << "<section class=\"scene\">\n<h2>" << escapeMarkup(s.name) << " <span class=\"" << (r.pass ? "pass" : "fail")
        << "\">" << (r.pass ? "PASS" : "FAIL") << "</span></h2>\n";
   html << "<p>" << s.triangles << " triangles, " << r.width << "x" << r.height << "; raster "
        << formatNumber(s.rasterMs) << " ms, reference " << formatNumber(s.referenceMs) << " ms.</p>\n";
@@ -70,7 +72,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
     html << "<p>Every family is within its threshold and no NaN or Inf was seen.</p>\n";
   } else {
     html << "<ul>\n";
-    for (const std::string& reason : r.reasons) html << "<li>" << escape(reason) << "</li>\n";
+    for (const std::string& reason : r.reasons) html << "<li>" << escapeMarkup(reason) << "</li>\n";
     html << "</ul>\n";
   }
   html << "<div class=\"images\">\n";
@@ -79,7 +81,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   for (const auto& [kind, caption] : images) {
     const std::string file = urlEncode(s.stem + "." + kind + ".png");
     html << "<figure><a href=\"" << file << "\"><img src=\"" << file << "\" alt=\"" << caption << " of "
-         << escape(s.name) << "\"></a><figcaption>" << caption << "</figcaption></figure>\n";
+         << escapeMarkup(s.name) << "\"></a><figcaption>" << caption << "</figcaption></figure>\n";
   }
   html << "</div>\n<table>\n<tr><th>pixels</th><th>same triangle</th><th>different triangle</th>"
        << "<th>test only</th><th>reference only</th><th>disagreement</th><th>one side only</th></tr>\n<tr><td>"
@@ -102,28 +104,29 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   for (const FamilyReport& f : r.families) {
     const FamilyStats& st = f.stats;
     const std::string worst = formatWorst(st.worst);
-    html << "<tr><td>" << escape(f.name) << "</td><td>" << formatNumber(st.max) << "</td><td>" << formatNumber(st.mean)
+    html << "<tr><td>" << escapeMarkup(f.name) << "</td><td>" << formatNumber(st.max) << "</td><td>" << formatNumber(st.mean)
          << "</td><td>" << formatNumber(st.rms) << "</td><td>" << formatNumber(st.p50) << "</td><td>"
          << formatNumber(st.p99) << "</td><td>" << formatNumber(st.p999) << "</td><td>" << st.nanCount + st.infCount
          << "</td><td>" << formatNumber(f.gated) << (f.bounded ? " of bound" : f.range > 0 ? " of range" : "")
-         << "</td><td>" << formatNumber(f.threshold) << "</td><td>" << escape(worst) << "</td></tr>\n";
+         << "</td><td>" << formatNumber(f.threshold) << "</td><td>" << escapeMarkup(worst) << "</td></tr>\n";
   }
   html << "</table>\n</section>\n";
 }
 
 void benchSection(std::ostringstream& html, const std::string& dir, const BenchResults& bench) {
   const std::vector<BenchRow>& rows = bench.rows;
-  writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows));
+  writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows, bench.machine ? &*bench.machine : nullptr));
   html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
        << "<p>From bench results: medians over runs in one process; floor ms is the time to write the setting's "
-       << "output planes alone (memory's floor under raster ms); error is the p99.9 barycentric error against "
-       << "the reference; dashed lines mark each scene's Pareto front.</p>\n";
-  if (bench.machine) html << "<p class=\"settings\">Measured on: " << escape(describe(*bench.machine)) << "</p>\n";
+       << "output planes alone (memory's floor under raster ms). The chart sets each scene's frame times against "
+       << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
+       << "dashed lines and ringed dots mark each panel's Pareto front.</p>\n";
+  if (bench.machine) html << "<p class=\"settings\">Measured on: " << escapeMarkup(describe(*bench.machine)) << "</p>\n";
   html << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
        << "<th>speedup</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
   for (const BenchRow& r : rows) {
-    html << "<tr><td>" << escape(r.scene) << "</td><td>" << escape(r.setting) << (r.isDefault ? " (default)" : "")
+    html << "<tr><td>" << escapeMarkup(r.scene) << "</td><td>" << escapeMarkup(r.setting) << (r.isDefault ? " (default)" : "")
          << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>"
          << (r.storeFloorMs > 0 ? formatNumber(r.storeFloorMs) : std::string("-")) << "</td><td>"
          << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
@@ -146,7 +149,7 @@ void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& sce
        << (failed ? "FAIL" : "PASS") << "</span> "
        << (failed ? std::to_string(failed) + " of " + std::to_string(scenes.size()) + " scenes fail the gate"
                   : "all " + std::to_string(scenes.size()) + " scenes pass the gate")
-       << "</p>\n<p class=\"settings\">" << escape(settings) << "</p>\n"
+       << "</p>\n<p class=\"settings\">" << escapeMarkup(settings) << "</p>\n"
        << "<p class=\"settings\">Heatmaps: barycentric error on a log10 magma scale from 1e-8 (dark) to 1e-1 "
        << "(bright); green: different triangle; cyan: covered by one side only; magenta: NaN or Inf; grey: "
        << "empty. Thresholds and their origin: docs/compare.md.</p>\n";

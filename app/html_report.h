@@ -24,4 +24,7 @@ struct ReportScene {
 void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
                      const BenchResults& bench = {});
 
+// `text` with & < > " ' as character references: safe in HTML and SVG text and attributes.
+std::string escapeMarkup(const std::string& text);
+
 }  // namespace rc::app

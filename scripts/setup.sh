@@ -14,7 +14,7 @@ packages=(
   libtinyobjloader-dev           # OBJ meshes
   libtinygltf-dev                # glTF 2.0 scenes
   libpng-dev                     # PNG images for people
-  libfreetype-dev fonts-dejavu-core  # legend text in PNG heatmaps
+  libfreetype-dev fonts-dejavu-core  # text in PNG heatmap legends and bench charts
   libgtest-dev                   # the test suite
   libgmp-dev                     # exact rationals: coverage without snapping (rasterizer/orientation.cpp), the tests' oracle
   libbenchmark-dev               # Google Benchmark microbenchmarks of the kernels (bench/)

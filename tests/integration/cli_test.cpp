@@ -323,6 +323,33 @@ TEST(Cli, BenchTracesWithThePinnedEmbreeIsa) {
       << unpinned.output;
 }
 
+// The chart's format follows its name: .png writes a PNG; a name that is neither .svg nor .png
+// is a usage error before anything runs, and nothing is written. The command line's arithmetic
+// joins the sweep as a row of its own.
+TEST(Cli, BenchChartIsWrittenInTheFormatItsNameAsks) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const CliRun bad = run("bench floor --runs 1 -q --json " + (dir / "b.json").string() + " --chart " +
+                         (dir / "chart.bmp").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("chart.bmp: name it .svg or .png"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "b.json"));
+  EXPECT_FALSE(fs::exists(dir / "chart.bmp"));
+
+  const CliRun r = run("bench floor --runs 1 -q --mode affine --precision double --json " + (dir / "b.json").string() +
+                       " --chart " + (dir / "chart.PNG").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream png(dir / "chart.PNG", std::ios::binary);
+  std::string signature(8, '\0');
+  png.read(signature.data(), 8);
+  EXPECT_EQ(signature, std::string("\x89PNG\r\n\x1a\n", 8));
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
+  int asked = 0;
+  for (const auto& row : j["rows"]) asked += row["setting"] == "affine-double-8bit";
+  EXPECT_EQ(asked, 1);
+  EXPECT_NE(r.output.find("affine-double-8bit"), std::string::npos) << r.output;
+}
+
 // bench times the settings in rounds, every setting once per round, and says so as it goes:
 // progress counts the reference, each round and the errors, and reaches its total.
 TEST(Cli, BenchTimesTheSettingsRoundByRound) {

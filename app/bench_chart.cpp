@@ -1,0 +1,529 @@
+// bench's chart: laid out once as a list of lines, dots and texts (text measured with the font
+// the PNG draws in), then written as SVG text or drawn into a PNG image.
+#include "app/bench_chart.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <variant>
+
+#include "app/html_report.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/text.h"
+
+namespace rc::app {
+namespace chart {
+
+std::vector<std::size_t> paretoFront(const std::vector<Point>& points) {
+  std::vector<std::size_t> front;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    const bool dominated = std::any_of(points.begin(), points.end(), [&](const Point& q) {
+      return q.x <= p.x && q.y <= p.y && (q.x < p.x || q.y < p.y);
+    });
+    if (!dominated) front.push_back(i);
+  }
+  std::stable_sort(front.begin(), front.end(), [&](std::size_t a, std::size_t b) { return points[a].x < points[b].x; });
+  return front;
+}
+
+bool crosses(const Segment& segment, const Box& box) {
+  // Liang-Barsky: the part of the segment a + t (b - a), t in [0, 1], inside each slab.
+  double t0 = 0, t1 = 1;
+  const double d[2] = {segment.b.x - segment.a.x, segment.b.y - segment.a.y};
+  const double from[2] = {segment.a.x, segment.a.y}, lo[2] = {box.x0, box.y0}, hi[2] = {box.x1, box.y1};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0) {
+      if (from[k] <= lo[k] || from[k] >= hi[k]) return false;
+      continue;
+    }
+    double ta = (lo[k] - from[k]) / d[k], tb = (hi[k] - from[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 < t1;
+}
+
+std::vector<LabelPlace> placeLabels(const std::vector<Point>& points, const std::vector<double>& radii,
+                                    const std::vector<double>& widths, double height, const Box& area,
+                                    const std::vector<Segment>& lines) {
+  std::vector<Box> dots;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double r = radii[i];
+    dots.push_back({points[i].x - r, points[i].y - r, points[i].x + r, points[i].y + r});
+  }
+  constexpr double kGap = 3, kSteps = 10;
+  std::vector<LabelPlace> placed;
+  std::vector<Box> taken;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double x = points[i].x, y = points[i].y, r = radii[i], w = widths[i], h = height;
+    const auto right = [&](double dy) { return Box{x + r + kGap, y - h / 2 + dy, x + r + kGap + w, y + h / 2 + dy}; };
+    const auto left = [&](double dy) { return Box{x - r - kGap - w, y - h / 2 + dy, x - r - kGap, y + h / 2 + dy}; };
+    std::vector<LabelPlace> candidates = {{right(0), false},
+                                          {left(0), false},
+                                          {{x - w / 2, y - r - 1 - h, x + w / 2, y - r - 1}, false},
+                                          {{x - w / 2, y + r + 1, x + w / 2, y + r + 1 + h}, false}};
+    for (int k = 1; k <= kSteps; ++k) {
+      for (const double dy : {-(h + 1) * k, (h + 1) * k}) {
+        candidates.push_back({right(dy), true});
+        candidates.push_back({left(dy), true});
+      }
+    }
+    LabelPlace chosen = candidates.front();
+    for (const LabelPlace& c : candidates) {
+      const auto clash = [&](const Box& b) { return b.overlaps(c.box); };
+      if (c.box.inside(area) && std::none_of(taken.begin(), taken.end(), clash) &&
+          std::none_of(dots.begin(), dots.end(), clash) &&
+          std::none_of(lines.begin(), lines.end(), [&](const Segment& l) { return crosses(l, c.box); })) {
+        chosen = c;
+        break;
+      }
+    }
+    placed.push_back(chosen);
+    taken.push_back(chosen.box);
+  }
+  return placed;
+}
+
+std::string shortSettingName(const std::string& setting, const std::string& defaultSetting) {
+  if (setting == defaultSetting) return "default";
+  const auto words = [](const std::string& name) {
+    std::vector<std::string> out;
+    std::stringstream in(name);
+    for (std::string word; std::getline(in, word, '-');) out.push_back(word);
+    return out;
+  };
+  const std::vector<std::string> shared = words(defaultSetting);
+  std::string out;
+  for (const std::string& word : words(setting)) {
+    if (std::find(shared.begin(), shared.end(), word) != shared.end()) continue;
+    out += (out.empty() ? "" : " ") + word;
+  }
+  return out.empty() ? setting : out;
+}
+
+}  // namespace chart
+
+namespace {
+
+using chart::Box;
+using chart::Point;
+
+// What the chart is drawn from: in page units (an SVG pixel), y down.
+struct Line {
+  double x0, y0, x1, y1;
+  Rgb8 colour;
+  double width;
+  double dash;  // length of each dash and gap; 0: solid
+  Line(double x0_, double y0_, double x1_, double y1_, Rgb8 colour_, double width_, double dash_ = 0)
+      : x0(x0_), y0(y0_), x1(x1_), y1(y1_), colour(colour_), width(width_), dash(dash_) {}
+};
+struct Dot {
+  double x, y, radius;
+  Rgb8 fill;
+  double ring;        // width of a dark outline; 0: none
+  std::string title;  // the SVG's tooltip
+  Dot(double x_, double y_, double radius_, Rgb8 fill_, double ring_ = 0, std::string title_ = "")
+      : x(x_), y(y_), radius(radius_), fill(fill_), ring(ring_), title(std::move(title_)) {}
+};
+enum class Anchor { kStart, kMiddle, kEnd };
+struct Text {
+  double x, y;  // y: the baseline
+  std::string text;
+  int size;
+  Rgb8 colour;
+  Anchor anchor;
+  Text(double x_, double y_, std::string text_, int size_, Rgb8 colour_, Anchor anchor_ = Anchor::kStart)
+      : x(x_), y(y_), text(std::move(text_)), size(size_), colour(colour_), anchor(anchor_) {}
+};
+using Item = std::variant<Line, Dot, Text>;
+
+struct Drawing {
+  int width = 0, height = 0;
+  std::vector<Item> items;  // in drawing order
+};
+
+constexpr Rgb8 kInk{0x22, 0x22, 0x22}, kGrey{0x66, 0x66, 0x66}, kGrid{0xdd, 0xdd, 0xdd}, kLeader{0x99, 0x99, 0x99};
+constexpr Rgb8 kDefault{0xd6, 0x27, 0x28}, kArithmetic{0x1f, 0x77, 0xb4}, kSameArithmetic{0x8c, 0x8c, 0x8c};
+
+// Text widths from the font the PNG is drawn in (DejaVu Sans), one renderer per size.
+class Fonts {
+ public:
+  const TextRenderer& at(int size) {
+    auto& slot = renderers_[size];
+    if (!slot) slot = std::make_unique<TextRenderer>(size);
+    return *slot;
+  }
+  double width(const std::string& text, int size) { return at(size).measure(text); }
+
+ private:
+  std::map<int, std::unique_ptr<TextRenderer>> renderers_;
+};
+
+std::string formatTick(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+std::string withThousands(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// Frame-time ticks: the first of 1; 1, 2, 5; 1 to 9 (times powers of ten) that gives three
+// ticks in [lo, hi].
+std::vector<double> timeTicks(double lo, double hi) {
+  const std::vector<std::vector<double>> steps = {{1}, {1, 2, 5}, {1, 1.5, 2, 3, 4, 5, 6, 7, 8, 9}};
+  std::vector<double> ticks;
+  for (const std::vector<double>& mantissas : steps) {
+    ticks.clear();
+    for (int e = int(std::floor(std::log10(lo))); e <= int(std::ceil(std::log10(hi))); ++e) {
+      for (double m : mantissas) {
+        const double v = m * std::pow(10.0, e);
+        if (v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12)) ticks.push_back(v);
+      }
+    }
+    if (ticks.size() >= 3) break;
+  }
+  return ticks;
+}
+
+struct Panel {
+  const char* title;
+  double BenchRow::*error;
+};
+constexpr Panel kPanels[] = {{"barycentric error, p99.9 (log)", &BenchRow::baryP999},
+                             {"pixels in disagreement with the reference, fraction (log)", &BenchRow::disagreementFraction}};
+
+constexpr int kWidth = 1000, kHeader = 58, kRowHeight = 332, kFooter = 92;
+constexpr int kLabelSize = 11, kTickSize = 11;
+
+// One panel: frame time (shared by the row's panels) against one error, its Pareto front
+// dashed and ringed, every point labelled.
+void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& rows, const Panel& panel,
+               const std::string& defaultName, double tLo, double tHi, const Box& plot) {
+  d.items.push_back(Text{plot.x0, plot.y0 - 10, panel.title, 12, kInk});
+  const auto x = [&](double ms) { return plot.x0 + (std::log10(ms / tLo)) / std::log10(tHi / tLo) * (plot.x1 - plot.x0); };
+  for (double t : timeTicks(tLo, tHi)) {
+    d.items.push_back(Line{x(t), plot.y0, x(t), plot.y1, kGrid, 1});
+    d.items.push_back(Text{x(t), plot.y1 + 15, formatTick(t), kTickSize, kGrey, Anchor::kMiddle});
+  }
+  d.items.push_back(Text{(plot.x0 + plot.x1) / 2, plot.y1 + 33, "frame time, ms (log)", kTickSize, kGrey, Anchor::kMiddle});
+
+  // Errors: decades over the positive values; an error of 0 on a row of its own at the bottom.
+  double eMin = INFINITY, eMax = 0;
+  bool zero = false;
+  for (const BenchRow* r : rows) {
+    const double e = r->*panel.error;
+    if (e > 0 && std::isfinite(e)) eMin = std::min(eMin, e), eMax = std::max(eMax, e);
+    zero = zero || e == 0;
+  }
+  if (!(eMax > 0)) eMin = eMax = 1e-9;
+  const int lo = int(std::floor(std::log10(eMin))), hi = std::max(int(std::ceil(std::log10(eMax))), lo + 1);
+  const double logBottom = plot.y1 - (zero ? 26 : 6), zeroY = plot.y1 - 7;
+  const auto y = [&](double e) {
+    if (e == 0) return zeroY;
+    return logBottom - (std::log10(e) - lo) / (hi - lo) * (logBottom - plot.y0 - 6);
+  };
+  const int every = hi - lo > 8 ? 2 : 1;
+  for (int k = lo; k <= hi; k += every) {
+    d.items.push_back(Line{plot.x0, y(std::pow(10.0, k)), plot.x1, y(std::pow(10.0, k)), kGrid, 1});
+    d.items.push_back(Text{plot.x0 - 6, y(std::pow(10.0, k)) + 4, "1e" + std::to_string(k), kTickSize, kGrey, Anchor::kEnd});
+  }
+  if (zero) {
+    d.items.push_back(Line{plot.x0, zeroY, plot.x1, zeroY, kGrid, 1, 2});
+    d.items.push_back(Text{plot.x0 - 6, zeroY + 4, "0", kTickSize, kGrey, Anchor::kEnd});
+  }
+  d.items.push_back(Line{plot.x0, plot.y1, plot.x1, plot.y1, kGrey, 1});
+  d.items.push_back(Line{plot.x0, plot.y0, plot.x0, plot.y1, kGrey, 1});
+
+  std::vector<const BenchRow*> shown;
+  std::vector<Point> values, screen;
+  for (const BenchRow* r : rows) {
+    const double e = r->*panel.error;
+    if (!(r->rasterMs > 0) || !std::isfinite(r->rasterMs) || !(e >= 0) || !std::isfinite(e)) continue;
+    shown.push_back(r);
+    values.push_back({r->rasterMs, e});
+    screen.push_back({x(r->rasterMs), y(e)});
+  }
+  const std::vector<std::size_t> front = chart::paretoFront(values);
+  std::vector<chart::Segment> frontLines;
+  for (std::size_t k = 1; k < front.size(); ++k) {
+    const Point a = screen[front[k - 1]], b = screen[front[k]];
+    d.items.push_back(Line{a.x, a.y, b.x, b.y, kInk, 1.2, 4});
+    frontLines.push_back({a, b});
+  }
+  // Labels: the default's first, then the front's, then the rest from left to right.
+  std::vector<std::size_t> order(shown.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto rank = [&](std::size_t i) {
+    return shown[i]->isDefault ? 0 : std::find(front.begin(), front.end(), i) != front.end() ? 1 : 2;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rank(a) != rank(b) ? rank(a) < rank(b) : screen[a].x < screen[b].x;
+  });
+  std::vector<Point> points;
+  std::vector<double> radii, widths;
+  std::vector<std::string> names;
+  for (std::size_t i : order) {
+    points.push_back(screen[i]);
+    radii.push_back(shown[i]->isDefault ? 6 : 4.5);
+    names.push_back(chart::shortSettingName(shown[i]->setting, defaultName));
+    widths.push_back(fonts.width(names.back(), kLabelSize));
+  }
+  const std::vector<chart::LabelPlace> places = chart::placeLabels(points, radii, widths, kLabelSize + 2, plot, frontLines);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const chart::LabelPlace& place = places[k];
+    if (place.leader) {
+      const double toX = place.box.x0 > points[k].x ? place.box.x0 - 1 : place.box.x1 + 1;
+      d.items.push_back(Line{points[k].x, points[k].y, toX, (place.box.y0 + place.box.y1) / 2, kLeader, 0.8});
+    }
+  }
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const BenchRow& r = *shown[order[k]];
+    const bool onFront = std::find(front.begin(), front.end(), order[k]) != front.end();
+    const bool sameArithmetic = std::count(r.setting.begin(), r.setting.end(), '-') > 2;
+    char title[256];
+    std::snprintf(title, sizeof title, "%s %s: %.3g ms, %s %.3g", r.scene.c_str(), r.setting.c_str(), r.rasterMs,
+                  panel.error == &BenchRow::baryP999 ? "bary p99.9" : "disagreement", values[order[k]].y);
+    d.items.push_back(Dot{points[k].x, points[k].y, radii[k],
+                          r.isDefault ? kDefault : sameArithmetic ? kSameArithmetic : kArithmetic, onFront ? 1.6 : 0,
+                          title});
+  }
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    d.items.push_back(Text{places[k].box.x0, places[k].box.y1 - 3, names[k], kLabelSize, kInk});
+  }
+}
+
+Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
+  Fonts fonts;
+  std::vector<std::string> scenes;  // in the order bench ran them
+  for (const BenchRow& r : rows) {
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  }
+  Drawing d;
+  d.width = kWidth;
+  d.height = kHeader + kRowHeight * int(scenes.size()) + kFooter;
+  d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, every setting", 16, kInk});
+  if (machine) d.items.push_back(Text{20, 47, "measured on " + describe(*machine), 11, kGrey});
+  std::string defaultName = benchSettingName(Interpolation::kPerspective, Precision::kFloat, 8);
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    std::vector<const BenchRow*> mine;
+    for (const BenchRow& r : rows) {
+      if (r.scene == scenes[s]) mine.push_back(&r);
+    }
+    const BenchRow* head = mine.front();
+    for (const BenchRow* r : mine) {
+      if (r->isDefault) head = r, defaultName = r->setting;
+    }
+    const double top = kHeader + kRowHeight * double(s);
+    char conditions[512];
+    std::snprintf(conditions, sizeof conditions,
+                  "%s: %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
+                  head->scene.c_str(), withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
+                  head->runs > 0 ? (", medians of " + std::to_string(head->runs) + " runs").c_str() : "",
+                  head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
+                  head->referenceBuildMs);
+    d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});
+    d.items.push_back(Text{20, top + 26, conditions, 13, kInk});
+    double tMin = INFINITY, tMax = 0;
+    for (const BenchRow* r : mine) {
+      if (r->rasterMs > 0 && std::isfinite(r->rasterMs)) tMin = std::min(tMin, r->rasterMs), tMax = std::max(tMax, r->rasterMs);
+    }
+    if (!(tMax > 0)) tMin = tMax = 1;
+    // A margin either side, and at least a factor of 2.5 across, so that close points stay apart
+    // from the edges and a narrow spread is not blown up.
+    double tLo = tMin / 1.15, tHi = tMax * 1.15;
+    if (tHi / tLo < 2.5) {
+      const double middle = std::sqrt(tLo * tHi);
+      tLo = middle / std::sqrt(2.5), tHi = middle * std::sqrt(2.5);
+    }
+    for (int p = 0; p < 2; ++p) {
+      const Box plot{p * 500.0 + 70, top + 60, p * 500.0 + 482, top + 284};
+      drawPanel(d, fonts, mine, kPanels[p], defaultName, tLo, tHi, plot);
+    }
+  }
+  const double legend = d.height - kFooter + 18.0;
+  d.items.push_back(Line{20, legend - 12, kWidth - 20.0, legend - 12, kGrid, 1});
+  d.items.push_back(Dot{30, legend, 6, kDefault});
+  d.items.push_back(Text{42, legend + 4, "the default setting (" + defaultName + ")", 11, kInk});
+  d.items.push_back(Dot{30, legend + 20, 4.5, kArithmetic});
+  d.items.push_back(Text{42, legend + 24, "another arithmetic: interpolation mode, precision or subpixel bits", 11, kInk});
+  d.items.push_back(Dot{30, legend + 40, 4.5, kSameArithmetic});
+  d.items.push_back(Text{42, legend + 44,
+                         "the default's arithmetic run another way: 1 thread, other kernels, no diagnostics, no culling",
+                         11, kInk});
+  d.items.push_back(Line{520, legend, 560, legend, kInk, 1.2, 4});
+  d.items.push_back(Dot{570, legend, 4.5, kArithmetic, 1.6});
+  d.items.push_back(Text{582, legend + 4, "Pareto front: nothing else as fast and as accurate", 11, kInk});
+  d.items.push_back(Text{520, legend + 24, "an error of 0 sits on the row marked 0", 11, kInk});
+  return d;
+}
+
+std::string hex(Rgb8 c) {
+  char text[8];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c[0], c[1], c[2]);
+  return text;
+}
+
+std::string toSvg(const Drawing& d) {
+  std::ostringstream svg;
+  svg.precision(5);
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << d.width << "\" height=\"" << d.height
+      << "\" font-family=\"DejaVu Sans, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  for (const Item& item : d.items) {
+    if (const Line* l = std::get_if<Line>(&item)) {
+      svg << "<line x1=\"" << l->x0 << "\" y1=\"" << l->y0 << "\" x2=\"" << l->x1 << "\" y2=\"" << l->y1
+          << "\" stroke=\"" << hex(l->colour) << "\" stroke-width=\"" << l->width << "\"";
+      if (l->dash > 0) svg << " stroke-dasharray=\"" << l->dash << "\"";
+      svg << "/>\n";
+    } else if (const Dot* p = std::get_if<Dot>(&item)) {
+      svg << "<circle cx=\"" << p->x << "\" cy=\"" << p->y << "\" r=\"" << p->radius << "\" fill=\"" << hex(p->fill)
+          << "\"";
+      if (p->ring > 0) svg << " stroke=\"" << hex(kInk) << "\" stroke-width=\"" << p->ring << "\"";
+      if (p->title.empty()) {
+        svg << "/>\n";
+      } else {
+        svg << "><title>" << escapeMarkup(p->title) << "</title></circle>\n";
+      }
+    } else {
+      const Text& t = std::get<Text>(item);
+      svg << "<text x=\"" << t.x << "\" y=\"" << t.y << "\" font-size=\"" << t.size << "\" fill=\"" << hex(t.colour)
+          << "\"" << (t.anchor == Anchor::kMiddle ? " text-anchor=\"middle\"" : t.anchor == Anchor::kEnd ? " text-anchor=\"end\"" : "")
+          << ">" << escapeMarkup(t.text) << "</text>\n";
+    }
+  }
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+// Drawn at kScale times the page size with coverage from distances, then averaged down: the
+// lines and dots come out smooth.
+constexpr int kScale = 2;
+
+void blend(Rgb8Image& image, int x, int y, Rgb8 colour, double coverage) {
+  if (coverage <= 0 || x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+  coverage = std::min(coverage, 1.0);
+  std::uint8_t* p = &image.pixels[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3];
+  for (int k = 0; k < 3; ++k) p[k] = std::uint8_t(std::lround(p[k] + (colour[k] - p[k]) * coverage));
+}
+
+void drawLine(Rgb8Image& image, const Line& l) {
+  const double s = kScale, x0 = l.x0 * s, y0 = l.y0 * s, x1 = l.x1 * s, y1 = l.y1 * s, half = l.width * s / 2;
+  const double dx = x1 - x0, dy = y1 - y0, length = std::hypot(dx, dy), dash = l.dash * s;
+  for (int y = int(std::floor(std::min(y0, y1) - half - 1)); y <= int(std::ceil(std::max(y0, y1) + half + 1)); ++y) {
+    for (int x = int(std::floor(std::min(x0, x1) - half - 1)); x <= int(std::ceil(std::max(x0, x1) + half + 1)); ++x) {
+      const double px = x + 0.5 - x0, py = y + 0.5 - y0;
+      const double along = length > 0 ? std::clamp((px * dx + py * dy) / length, 0.0, length) : 0.0;
+      if (dash > 0 && std::fmod(along, 2 * dash) > dash) continue;
+      const double ax = length > 0 ? along * dx / length : 0, ay = length > 0 ? along * dy / length : 0;
+      blend(image, x, y, l.colour, half + 0.5 - std::hypot(px - ax, py - ay));
+    }
+  }
+}
+
+void drawDot(Rgb8Image& image, const Dot& dot) {
+  const double s = kScale, cx = dot.x * s, cy = dot.y * s, r = dot.radius * s, ring = dot.ring * s / 2;
+  for (int y = int(cy - r - ring - 2); y <= int(cy + r + ring + 2); ++y) {
+    for (int x = int(cx - r - ring - 2); x <= int(cx + r + ring + 2); ++x) {
+      const double distance = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
+      blend(image, x, y, dot.fill, r + 0.5 - distance);
+      if (ring > 0) blend(image, x, y, kInk, ring + 0.5 - std::abs(distance - r));
+    }
+  }
+}
+
+Rgb8Image toImage(const Drawing& d, Fonts& fonts) {
+  Rgb8Image big(d.width * kScale, d.height * kScale, Rgb8{255, 255, 255});
+  for (const Item& item : d.items) {
+    if (const Line* l = std::get_if<Line>(&item)) {
+      drawLine(big, *l);
+    } else if (const Dot* p = std::get_if<Dot>(&item)) {
+      drawDot(big, *p);
+    } else {
+      const Text& t = std::get<Text>(item);
+      const TextRenderer& font = fonts.at(t.size * kScale);
+      const int width = font.measure(t.text);
+      const int x = int(std::lround(t.x * kScale)) -
+                    (t.anchor == Anchor::kMiddle ? width / 2 : t.anchor == Anchor::kEnd ? width : 0);
+      font.draw(big, x, int(std::lround(t.y * kScale)), t.text, t.colour);
+    }
+  }
+  Rgb8Image image(d.width, d.height, Rgb8{255, 255, 255});
+  for (int y = 0; y < d.height; ++y) {
+    for (int x = 0; x < d.width; ++x) {
+      for (int k = 0; k < 3; ++k) {
+        int sum = 0;
+        for (int j = 0; j < kScale; ++j) {
+          for (int i = 0; i < kScale; ++i) {
+            sum += big.pixels[((std::size_t(y) * kScale + j) * std::size_t(big.width) + std::size_t(x) * kScale + i) * 3 + k];
+          }
+        }
+        image.pixels[(std::size_t(y) * std::size_t(d.width) + std::size_t(x)) * 3 + k] =
+            std::uint8_t((sum + kScale * kScale / 2) / (kScale * kScale));
+      }
+    }
+  }
+  return image;
+}
+
+std::string lower(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+}  // namespace
+
+ChartFormat chartFormatOf(const std::string& path) {
+  const std::string name = lower(path);
+  const auto endsWith = [&](const char* suffix) {
+    const std::string s(suffix);
+    return name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  if (endsWith(".svg")) return ChartFormat::kSvg;
+  if (endsWith(".png")) return ChartFormat::kPng;
+  throw usageError("--chart: " + path + ": name it .svg or .png, the format to write");
+}
+
+std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
+  return toSvg(layOut(rows, machine));
+}
+
+Rgb8Image benchChartImage(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
+  Fonts fonts;
+  return toImage(layOut(rows, machine), fonts);
+}
+
+BenchChart makeBenchChart(const std::vector<BenchRow>& rows, const BenchMachine* machine, const std::string& path) {
+  BenchChart chart;
+  chart.format = chartFormatOf(path);
+  if (chart.format == ChartFormat::kSvg) {
+    chart.svg = benchChartSvg(rows, machine);
+  } else {
+    chart.image = benchChartImage(rows, machine);
+  }
+  return chart;
+}
+
+void writeBenchChart(const BenchChart& chart, const std::string& path) {
+  if (chart.format == ChartFormat::kSvg) {
+    writeTextFile(path, chart.svg);
+  } else {
+    writePng(chart.image, path);
+  }
+}
+
+}  // namespace rc::app

@@ -1,0 +1,206 @@
+// bench's sweep of settings and its chart: the Pareto front, label placement, the SVG and the
+// PNG drawn from crafted rows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "app/bench.h"
+#include "app/bench_chart.h"
+#include "core/error.h"
+
+namespace {
+
+using rc::app::BenchRow;
+namespace chart = rc::app::chart;
+
+TEST(BenchSettings, TheCommandLinesCombinationJoinsTheSweepUnlessItIsThere) {
+  const auto names = [](const rc::RasterOptions& base) {
+    std::vector<std::string> out;
+    for (const rc::app::BenchSetting& s : rc::app::benchSettings(base)) out.push_back(s.name);
+    return out;
+  };
+  const std::vector<std::string> sweep = names(rc::RasterOptions{});
+  ASSERT_FALSE(sweep.empty());
+  EXPECT_EQ(sweep.front(), "perspective-float-8bit");
+  EXPECT_EQ(std::count(sweep.begin(), sweep.end(), "perspective-float-8bit"), 1);
+  for (int bits : {4, 16, 0}) {  // in the sweep already: nothing joins
+    rc::RasterOptions base;
+    base.subpixelBits = bits;
+    EXPECT_EQ(names(base).size(), sweep.size()) << bits;
+  }
+  rc::RasterOptions asked;
+  asked.interpolation = rc::Interpolation::kAffine;
+  asked.precision = rc::Precision::kDouble;
+  asked.subpixelBits = 4;
+  const std::vector<rc::app::BenchSetting> settings = rc::app::benchSettings(asked);
+  ASSERT_EQ(settings.size(), sweep.size() + 1);
+  const rc::app::BenchSetting& last = settings.back();
+  EXPECT_EQ(last.name, "affine-double-4bit");
+  EXPECT_FALSE(last.isDefault);
+  EXPECT_EQ(last.raster.interpolation, rc::Interpolation::kAffine);
+  EXPECT_EQ(last.raster.precision, rc::Precision::kDouble);
+  EXPECT_EQ(last.raster.subpixelBits, 4);
+  // The sweep itself is unchanged by the command line's arithmetic: its first row is the default.
+  EXPECT_EQ(settings.front().name, "perspective-float-8bit");
+  EXPECT_EQ(settings.front().raster.interpolation, rc::Interpolation::kPerspective);
+  EXPECT_EQ(settings.front().raster.subpixelBits, 8);
+  EXPECT_EQ(rc::app::benchSettingName(rc::Interpolation::kPerspective, rc::Precision::kFloat, 0),
+            "perspective-float-nosnap");
+}
+
+TEST(BenchChart, ParetoFrontKeepsWhatNothingElseBeatsOnBothAxes) {
+  // x: time, y: error. (1, 5) and (2, 2) and (4, 0) are the front; (3, 2) is beaten by (2, 2)
+  // on time alone; (1, 6) by (1, 5) on error alone; (2, 2) twice: both on the front.
+  const std::vector<chart::Point> points = {{3, 2}, {1, 5}, {4, 0}, {2, 2}, {1, 6}, {5, 0}, {2, 2}};
+  EXPECT_EQ(chart::paretoFront(points), (std::vector<std::size_t>{1, 3, 6, 2}));
+  EXPECT_EQ(chart::paretoFront({{1, 1}}), (std::vector<std::size_t>{0}));
+  EXPECT_TRUE(chart::paretoFront({}).empty());
+}
+
+TEST(BenchChart, SegmentsCrossBoxesOnlyThroughTheirInside) {
+  const chart::Box box{10, 10, 20, 20};
+  EXPECT_TRUE(chart::crosses({{0, 15}, {30, 15}}, box));   // straight through
+  EXPECT_TRUE(chart::crosses({{12, 12}, {14, 14}}, box));  // wholly inside
+  EXPECT_TRUE(chart::crosses({{0, 0}, {30, 30}}, box));    // the diagonal
+  EXPECT_FALSE(chart::crosses({{0, 0}, {9, 9}}, box));     // stops short
+  EXPECT_FALSE(chart::crosses({{0, 25}, {30, 25}}, box));  // passes below
+  EXPECT_FALSE(chart::crosses({{0, 10}, {30, 10}}, box));  // along an edge
+  EXPECT_FALSE(chart::crosses({{0, 19}, {19, 0}}, box));   // past the corner
+  EXPECT_TRUE(chart::crosses({{0, 21}, {21, 0}}, box));    // across the corner
+}
+
+TEST(BenchChart, LabelsOfACrowdedRowNeitherOverlapNorCoverADot) {
+  // Twelve dots 9 px apart on one line, labels 40 px wide: most cannot sit beside their dot.
+  std::vector<chart::Point> points;
+  for (int i = 0; i < 12; ++i) points.push_back({100 + 9.0 * i, 150});
+  const std::vector<double> radii(points.size(), 4.5), widths(points.size(), 40);
+  const chart::Box area{0, 0, 400, 300};
+  const std::vector<chart::Segment> lines = {{{80, 160}, {300, 160}}, {{100, 150}, {100, 100}}};
+  const std::vector<chart::LabelPlace> places = chart::placeLabels(points, radii, widths, 13, area, lines);
+  ASSERT_EQ(places.size(), points.size());
+  int leaders = 0;
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    const chart::Box& b = places[i].box;
+    EXPECT_TRUE(b.inside(area)) << i;
+    EXPECT_NEAR(b.x1 - b.x0, 40, 1e-9);
+    EXPECT_NEAR(b.y1 - b.y0, 13, 1e-9);
+    for (std::size_t j = 0; j < places.size(); ++j) {
+      if (j != i) {
+        EXPECT_FALSE(b.overlaps(places[j].box)) << i << " and " << j;
+      }
+      const chart::Box dot{points[j].x - 4.5, points[j].y - 4.5, points[j].x + 4.5, points[j].y + 4.5};
+      EXPECT_FALSE(b.overlaps(dot)) << "label " << i << " covers dot " << j;
+    }
+    for (const chart::Segment& l : lines) EXPECT_FALSE(chart::crosses(l, b)) << i;
+    leaders += places[i].leader;
+  }
+  EXPECT_GT(leaders, 0) << "a crowded row needs labels moved away, with leader lines";
+  // A lone point takes the place to its right, level with it, without a leader.
+  const std::vector<chart::LabelPlace> lone = chart::placeLabels({{50, 50}}, {4}, {30}, 13, area);
+  EXPECT_FALSE(lone[0].leader);
+  EXPECT_NEAR(lone[0].box.x0, 57, 1e-9);
+  EXPECT_NEAR((lone[0].box.y0 + lone[0].box.y1) / 2, 50, 1e-9);
+}
+
+TEST(BenchChart, ShortNamesKeepWhatDiffersFromTheDefault) {
+  const std::string d = "perspective-float-8bit";
+  EXPECT_EQ(chart::shortSettingName(d, d), "default");
+  EXPECT_EQ(chart::shortSettingName("affine-float-8bit", d), "affine");
+  EXPECT_EQ(chart::shortSettingName("perspective-float-nosnap", d), "nosnap");
+  EXPECT_EQ(chart::shortSettingName("perspective-float-8bit-1thread", d), "1thread");
+  EXPECT_EQ(chart::shortSettingName("affine-double-4bit", d), "affine double 4bit");
+}
+
+TEST(BenchChart, FormatComesFromTheName) {
+  EXPECT_EQ(rc::app::chartFormatOf("a/b.svg"), rc::app::ChartFormat::kSvg);
+  EXPECT_EQ(rc::app::chartFormatOf("B.SVG"), rc::app::ChartFormat::kSvg);
+  EXPECT_EQ(rc::app::chartFormatOf("chart.png"), rc::app::ChartFormat::kPng);
+  for (const char* bad : {"chart.bmp", "chart", "svg", ".svg.txt", "chart.pn"}) {
+    try {
+      rc::app::chartFormatOf(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const rc::Error& e) {
+      EXPECT_EQ(e.code(), rc::ExitCode::kUsage) << bad;
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Two scenes of three settings each.
+std::vector<BenchRow> craftedRows() {
+  std::vector<BenchRow> rows;
+  for (const char* scene : {"blob:tris=1000", "floor"}) {
+    const struct {
+      const char* setting;
+      bool isDefault;
+      double ms, p999, disagreement;
+    } settings[] = {{"perspective-float-8bit", true, 3.0, 1.8e-7, 2.5e-5},
+                    {"affine-float-8bit", false, 2.9, 2e-2, 2.5e-5},
+                    {"perspective-double-8bit", false, 4.1, 0, 2.5e-5}};
+    for (const auto& s : settings) {
+      BenchRow r;
+      r.scene = scene;
+      r.setting = s.setting;
+      r.isDefault = s.isDefault;
+      r.triangles = 1002000;
+      r.width = 1920, r.height = 1080, r.threads = 2, r.runs = 7;
+      r.rasterMs = s.ms;
+      r.baryP999 = s.p999;
+      r.disagreementFraction = s.disagreement;
+      r.referenceIsa = "avx512";
+      r.referenceTraceMs = 21.7;
+      r.referenceBuildMs = 0.45;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+int count(const std::string& text, const std::regex& pattern) {
+  return int(std::distance(std::sregex_iterator(text.begin(), text.end(), pattern), std::sregex_iterator()));
+}
+
+TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
+  const std::string svg = rc::app::benchChartSvg(craftedRows());
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  // A dot with a tooltip per row and panel; the legend's dots have none.
+  EXPECT_EQ(count(svg, std::regex("<circle[^>]*><title>")), 12);
+  // Fronts: bary error: affine (fastest), default, double (0) in each scene; disagreement: the
+  // fastest alone, the others being as wrong and slower. A ring marks each, and one in the legend.
+  EXPECT_EQ(count(svg, std::regex("<circle[^>]*stroke=")), 2 * (3 + 1) + 1);
+  for (const char* label : {">default<", ">affine<", ">double<", "1,002,000 triangles, 1920x1080, 2 threads, medians of 7 runs",
+                            "pixels in disagreement", "barycentric error, p99.9", ">0<"}) {
+    EXPECT_NE(svg.find(label), std::string::npos) << label;
+  }
+  EXPECT_EQ(count(svg, std::regex(">default<")), 4);
+  // Markup in a scene's name is escaped.
+  std::vector<BenchRow> odd = craftedRows();
+  odd[0].scene = "a<b>&\"c\"";
+  const std::string escaped = rc::app::benchChartSvg(odd);
+  EXPECT_EQ(escaped.find("a<b>"), std::string::npos);
+  EXPECT_NE(escaped.find("a&lt;b&gt;&amp;&quot;c&quot;"), std::string::npos);
+}
+
+TEST(BenchChart, PngIsTheSameLayoutDrawn) {
+  const std::vector<BenchRow> rows = craftedRows();
+  const rc::Rgb8Image image = rc::app::benchChartImage(rows);
+  const std::string svg = rc::app::benchChartSvg(rows);
+  std::smatch size;
+  ASSERT_TRUE(std::regex_search(svg, size, std::regex("width=\"(\\d+)\" height=\"(\\d+)\"")));
+  EXPECT_EQ(image.width, std::stoi(size[1]));
+  EXPECT_EQ(image.height, std::stoi(size[2]));
+  // The default's red dots (four in the panels, one in the legend) and dark text are drawn.
+  int red = 0, dark = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 3) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    red += r > 200 && g < 60 && b < 60;
+    dark += r < 60 && g < 60 && b < 60;
+  }
+  EXPECT_GT(red, 5 * 60) << "five dots of radius 6 have about 110 pixels each";
+  EXPECT_GT(dark, 2000);
+}
+
+}  // namespace
