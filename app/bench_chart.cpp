@@ -231,15 +231,17 @@ void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& row
     if (e > 0 && std::isfinite(e)) eMin = std::min(eMin, e), eMax = std::max(eMax, e);
     zero = zero || e == 0;
   }
-  if (!(eMax > 0)) eMin = eMax = 1e-9;
+  const bool positive = eMax > 0;
+  if (!positive) eMin = eMax = 1e-9;
   const int lo = int(std::floor(std::log10(eMin))), hi = std::max(int(std::ceil(std::log10(eMax))), lo + 1);
   const double logBottom = plot.y1 - (zero ? 26 : 6), zeroY = plot.y1 - 7;
   const auto y = [&](double e) {
     if (e == 0) return zeroY;
     return logBottom - (std::log10(e) - lo) / (hi - lo) * (logBottom - plot.y0 - 6);
   };
-  const int every = hi - lo > 8 ? 2 : 1;
-  for (int k = lo; k <= hi; k += every) {
+  // Without a positive error there are no decades to mark, only the row of 0.
+  const int every = hi - lo > 8 ? 2 : 1, last = positive ? hi : lo - 1;
+  for (int k = lo; k <= last; k += every) {
     d.items.push_back(Line{plot.x0, y(std::pow(10.0, k)), plot.x1, y(std::pow(10.0, k)), kGrid, 1});
     d.items.push_back(Text{plot.x0 - 6, y(std::pow(10.0, k)) + 4, "1e" + std::to_string(k), kTickSize, kGrey, Anchor::kEnd});
   }
@@ -292,7 +294,7 @@ void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& row
       d.items.push_back(Line{points[k].x, points[k].y, toX, (place.box.y0 + place.box.y1) / 2, kLeader, 0.8});
     }
   }
-  for (std::size_t k = 0; k < order.size(); ++k) {
+  for (std::size_t k = order.size(); k-- > 0;) {  // the default last, on top
     const BenchRow& r = *shown[order[k]];
     const bool onFront = std::find(front.begin(), front.end(), order[k]) != front.end();
     const bool sameArithmetic = std::count(r.setting.begin(), r.setting.end(), '-') > 2;

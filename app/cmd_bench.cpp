@@ -57,10 +57,14 @@ int runBenchCommand(BenchArgs& args) {
               "exr ms");
   for (const BenchRow& r : rows) {
     char spread[32], exr[16] = "-";
-    std::snprintf(spread, sizeof spread, "(%.1f..%.1f)", r.rasterMsMin, r.rasterMsMax);
+    // One decimal, as the median has two, unless that would round the spread of a short frame away.
+    const char* format = r.rasterMsMin < 1 ? "(%.2g..%.2g)" : "(%.1f..%.1f)";
+    std::snprintf(spread, sizeof spread, format, r.rasterMsMin, r.rasterMsMax);
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.1f", r.exrWriteMs);
-    std::printf("%-20s %-31s %9.2f %15s %8.2f %9.2f %9.2f %8.2f %8.2f %9s %9s %9s %8s\n", r.scene.c_str(),
-                (r.setting + (r.isDefault ? " *" : "")).c_str(), r.rasterMs, spread, r.storeFloorMs, r.referenceBuildMs,
+    char median[32];
+    std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
+    std::printf("%-20s %-31s %9s %15s %8.2f %9.2f %9.2f %8.2f %8.2f %9s %9s %9s %8s\n", r.scene.c_str(),
+                (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread, r.storeFloorMs, r.referenceBuildMs,
                 r.referenceTraceMs, r.speedup, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),
                 formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
   }
