@@ -500,6 +500,11 @@ ChartFormat chartFormatOf(const std::string& path) {
   throw usageError("--chart: " + path + ": name it .svg or .png, the format to write");
 }
 
+void checkChartCanBeMade(const std::string& path) {
+  chartFormatOf(path);
+  Fonts().at(kLabelSize);
+}
+
 std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
   return toSvg(layOut(rows, machine));
 }

@@ -19,6 +19,9 @@ enum class ChartFormat { kSvg, kPng };
 // The format `path` asks for by its extension, `.svg` or `.png` in any case; anything else is a
 // usage error naming the path, so that a chart is never written in a format its name denies.
 ChartFormat chartFormatOf(const std::string& path);
+// chartFormatOf, and the font both formats measure their text with loaded once (ioError naming
+// it where it cannot be), so that bench fails before its minutes of measuring, not after.
+void checkChartCanBeMade(const std::string& path);
 
 // `machine`, where given, is named under the title.
 std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine = nullptr);

@@ -33,7 +33,7 @@ int runBenchCommand(BenchArgs& args) {
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
-  if (!args.chart.empty()) chartFormatOf(args.chart);  // a name that is neither .svg nor .png fails now
+  if (!args.chart.empty()) checkChartCanBeMade(args.chart);  // a wrong name or no font fails now
   for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
     if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes
   }
