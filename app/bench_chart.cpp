@@ -88,7 +88,8 @@ std::vector<LabelPlace> placeLabels(const std::vector<Point>& points, const std:
       }
     }
     placed.push_back(chosen);
-    taken.push_back(chosen.box);
+    // Kept a gap's width from the labels after it, so that two labels never read as one.
+    taken.push_back({chosen.box.x0 - kGap, chosen.box.y0, chosen.box.x1 + kGap, chosen.box.y1});
   }
   return placed;
 }

@@ -64,8 +64,8 @@ struct LabelPlace {
 // Places a label of widths[i] by `height` beside each point (screen coordinates, y down; each
 // point a dot of radius radii[i]), in the order given: the first free place in `area` among
 // right, left, above, below and then right and left, further up and down by a line at a time.
-// Free means clear of every label placed before, of every dot and of every line segment in
-// `lines`. A label with no free place goes to the right of its point.
+// Free means clear of every label placed before (with a gap of 3 either side), of every dot and
+// of every line segment in `lines`. A label with no free place goes to the right of its point.
 struct Segment {
   Point a, b;
 };
