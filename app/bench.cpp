@@ -76,11 +76,14 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
                                         make(kPersp, kFloat, 16, threads, "", false),
                                         make(kPersp, kFloat, 0, threads, "", false),
                                         make(kPersp, kFloat, 8, 1, "-1thread", false)};
+  // A variant that the command line has made the base already (--threads 1, --raster-isa sse2,
+  // --no-diagnostics, --cull none) would only time the default again, and is left out.
+  if (threads == 1) settings.pop_back();
   // What the SIMD width and the four diagnostic channels cost: the same bits (respectively
   // the same channels less four), so the same error.
   BenchSetting sse2 = make(kPersp, kFloat, 8, threads, "-sse2", false);
   sse2.raster.isa = KernelIsa::kSse2;
-  settings.push_back(sse2);
+  if (resolveKernelIsa(base.isa) != KernelIsa::kSse2) settings.push_back(sse2);
   if (resolveKernelIsa(base.isa) == KernelIsa::kAvx512) {  // what the 512-bit registers buy
     BenchSetting avx2 = make(kPersp, kFloat, 8, threads, "-avx2", false);
     avx2.raster.isa = KernelIsa::kAvx2;
@@ -88,12 +91,12 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   }
   BenchSetting lean = make(kPersp, kFloat, 8, threads, "-nodiag", false);
   lean.raster.diagnostics = false;
-  settings.push_back(lean);
+  if (base.diagnostics) settings.push_back(lean);
   // What culling back faces saves where the scene allows it (Culling::kAuto); elsewhere this row
   // draws the same triangles as the default.
   BenchSetting all = make(kPersp, kFloat, 8, threads, "-nocull", false);
   all.raster.culling = Culling::kNone;
-  settings.push_back(all);
+  if (base.culling != Culling::kNone) settings.push_back(all);
   // The combination the command line names (--mode, --precision, --subpixel-bits), where the
   // sweep above does not have it: bench times it too rather than ignore it.
   const std::string asked = benchSettingName(base.interpolation, base.precision, base.subpixelBits);
@@ -207,6 +210,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
       row.storeFloorMs = median(floor);
       row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
+      row.diagnostics = setting.raster.diagnostics;
+      row.cull = setting.raster.culling == Culling::kNone ? "none" : "auto";
       row.referenceIsa = settings.reference.isa;
       row.referenceBuildMs = median(build);
       row.referenceTraceMs = median(trace);
@@ -263,7 +268,8 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"store_floor_ms", r.storeFloorMs},
                           {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
                                         {"tiles", r.tilesMs}}},
-                          {"raster_isa", r.rasterIsa}, {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
+                          {"raster_isa", r.rasterIsa}, {"diagnostics", r.diagnostics}, {"cull", r.cull},
+                          {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
                           {"reference_trace_ms", r.referenceTraceMs},
                           {"speedup", r.speedup}, {"speedup_with_build", r.speedupWithBuild},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
@@ -311,6 +317,8 @@ BenchResults readBenchJson(const std::string& path) {
       r.rasterMs = j.at("raster_ms").get<double>();
       r.storeFloorMs = j.value("store_floor_ms", 0.0);
       r.rasterIsa = j.value("raster_isa", std::string());
+      r.diagnostics = j.value("diagnostics", true);
+      r.cull = j.value("cull", std::string("auto"));
       r.referenceIsa = j.value("reference_isa", std::string());
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
       r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
@@ -353,19 +361,20 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
-         "reference_isa,raster_isa,store_floor_ms\n";
+         "reference_isa,raster_isa,store_floor_ms,diagnostics,cull\n";
   char line[768];
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
                   "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
-                  r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs);
+                  r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
+                  r.diagnostics ? "true" : "false", r.cull.c_str());
     out << line;
   }
   return out.str();

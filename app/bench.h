@@ -21,8 +21,9 @@ struct BenchSetting {
 // The settings bench sweeps, from the command line's rasterizer options: the default, affine,
 // double precision, 4 and 16 subpixel bits, the default on one thread (the thread-scaling
 // ratio), with the SSE2 kernels (what SIMD width buys; and the AVX2 ones where the default
-// resolves to AVX-512), without the diagnostic channels and without culling; and last the
-// combination of mode, precision and subpixel bits that `base` names, where it is none of those.
+// resolves to AVX-512), without the diagnostic channels and without culling, each where `base`
+// does not run it so already; and last the combination of mode, precision and subpixel bits
+// that `base` names, where it is none of those.
 std::vector<BenchSetting> benchSettings(const RasterOptions& base);
 // "perspective-float-8bit", "affine-double-nosnap", ...: a sweep row's name before its suffix.
 std::string benchSettingName(Interpolation mode, Precision precision, int subpixelBits);
@@ -44,6 +45,8 @@ struct BenchRow {
   // floor that memory bandwidth sets under rasterMs; 0 where not measured (older reports).
   double storeFloorMs = 0;
   std::string rasterIsa;          // the rasterizer's kernels as this setting resolved on this CPU
+  bool diagnostics = true;        // wrote the four diagnostic channels
+  std::string cull = "auto";      // --cull: "auto" or "none"
   std::string referenceIsa;       // Embree's
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs

@@ -47,9 +47,12 @@ int runBenchCommand(BenchArgs& args) {
 
   std::printf("medians of %d runs, the reference's trace and the settings timed in turn; "
               "raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
-              "rasterizer kernels: %s unless the setting names another; reference: Embree %s%s\n",
+              "rasterizer kernels: %s unless the setting names another%s%s; reference: Embree %s%s\n",
               args.runs, resolveThreadCount(args.settings.threads),
-              kernelIsaName(resolveKernelIsa(args.settings.raster.isa)), args.settings.reference.isa.c_str(),
+              kernelIsaName(resolveKernelIsa(args.settings.raster.isa)),
+              args.settings.raster.diagnostics ? "" : "; every setting without the diagnostic channels",
+              args.settings.raster.culling == Culling::kNone ? "; every setting drawing back faces (--cull none)" : "",
+              args.settings.reference.isa.c_str(),
               args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)");
   std::printf("machine: %s\n", describe(machine).c_str());
   std::printf("%-20s %-31s %9s %15s %8s %9s %9s %8s %8s %9s %9s %9s %8s\n", "scene", "setting", "raster ms",

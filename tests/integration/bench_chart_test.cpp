@@ -9,6 +9,7 @@
 #include "app/bench.h"
 #include "app/bench_chart.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace {
 
@@ -48,6 +49,41 @@ TEST(BenchSettings, TheCommandLinesCombinationJoinsTheSweepUnlessItIsThere) {
   EXPECT_EQ(settings.front().raster.subpixelBits, 8);
   EXPECT_EQ(rc::app::benchSettingName(rc::Interpolation::kPerspective, rc::Precision::kFloat, 0),
             "perspective-float-nosnap");
+}
+
+// --threads 1, --raster-isa sse2, --no-diagnostics and --cull none apply to every row, and the
+// variants they make the same as the default are left out rather than timed twice.
+TEST(BenchSettings, VariantsTheCommandLineAlreadyRunsAreLeftOut) {
+  rc::RasterOptions base;
+  base.threads = 1;
+  base.isa = rc::KernelIsa::kSse2;
+  base.diagnostics = false;
+  base.culling = rc::Culling::kNone;
+  const std::vector<rc::app::BenchSetting> settings = rc::app::benchSettings(base);
+  std::vector<std::string> names;
+  for (const rc::app::BenchSetting& s : settings) {
+    names.push_back(s.name);
+    EXPECT_EQ(s.raster.threads, 1) << s.name;
+    EXPECT_FALSE(s.raster.diagnostics) << s.name;
+    EXPECT_EQ(s.raster.culling, rc::Culling::kNone) << s.name;
+    if (s.name != "perspective-float-8bit-avx2") {
+      EXPECT_EQ(s.raster.isa, rc::KernelIsa::kSse2) << s.name;
+    }
+  }
+  for (const char* gone : {"perspective-float-8bit-1thread", "perspective-float-8bit-sse2",
+                           "perspective-float-8bit-nodiag", "perspective-float-8bit-nocull"}) {
+    EXPECT_EQ(std::count(names.begin(), names.end(), gone), 0) << gone;
+  }
+  EXPECT_EQ(names.size(), 6u) << "the default, affine, double, 4, 16 bits and none";
+  // On the tool's defaults every variant is there.
+  std::vector<std::string> all;
+  for (const rc::app::BenchSetting& s : rc::app::benchSettings(rc::RasterOptions{})) all.push_back(s.name);
+  const bool oneCore = rc::resolveThreadCount(0) == 1;  // there the default runs on 1 thread already
+  for (const std::string variant : {"perspective-float-8bit-1thread", "perspective-float-8bit-sse2",
+                                    "perspective-float-8bit-nodiag", "perspective-float-8bit-nocull"}) {
+    const bool expected = !(oneCore && variant == "perspective-float-8bit-1thread");
+    EXPECT_EQ(std::count(all.begin(), all.end(), variant), expected ? 1 : 0) << variant;
+  }
 }
 
 TEST(BenchChart, ParetoFrontKeepsWhatNothingElseBeatsOnBothAxes) {

@@ -202,7 +202,8 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   for (const auto& row : rows) {
     for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
                             "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
-                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa", "store_floor_ms"}) {
+                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa", "store_floor_ms",
+                            "diagnostics", "cull"}) {
       ASSERT_TRUE(row.contains(key)) << key;
     }
     // Unpinned, the reference runs Embree's fastest mode on this CPU.
@@ -229,6 +230,9 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     if (row["setting"] == "perspective-float-8bit-sse2") sse2 = row["bary_max_error"];
     if (row["setting"] == "perspective-float-8bit-nodiag") lean = row["bary_max_error"];
     if (row["setting"] == "perspective-float-8bit-avx2") avx2 = row["bary_max_error"];
+    // Each row says whether it wrote the diagnostic channels and how it culled.
+    EXPECT_EQ(row["diagnostics"].get<bool>(), row["setting"] != "perspective-float-8bit-nodiag") << row["setting"];
+    EXPECT_EQ(row["cull"], row["setting"] == "perspective-float-8bit-nocull" ? "none" : "auto") << row["setting"];
     // Each row names the kernels it ran.
     const std::string isa = row["raster_isa"];
     if (row["setting"] == "perspective-float-8bit-sse2") {
@@ -257,7 +261,7 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   int lines = 0;
   while (std::getline(csv, line)) {
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 27) << "28 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 29) << "30 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
