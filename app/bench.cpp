@@ -74,11 +74,10 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
                                         make(kPersp, Precision::kDouble, 8, threads, "", false),
                                         make(kPersp, kFloat, 4, threads, "", false),
                                         make(kPersp, kFloat, 16, threads, "", false),
-                                        make(kPersp, kFloat, 0, threads, "", false),
-                                        make(kPersp, kFloat, 8, 1, "-1thread", false)};
+                                        make(kPersp, kFloat, 0, threads, "", false)};
   // A variant that the command line has made the base already (--threads 1, --raster-isa sse2,
   // --no-diagnostics, --cull none) would only time the default again, and is left out.
-  if (threads == 1) settings.pop_back();
+  if (threads > 1) settings.push_back(make(kPersp, kFloat, 8, 1, "-1thread", false));
   // What the SIMD width and the four diagnostic channels cost: the same bits (respectively
   // the same channels less four), so the same error.
   BenchSetting sse2 = make(kPersp, kFloat, 8, threads, "-sse2", false);
