@@ -33,6 +33,8 @@ int runBenchCommand(BenchArgs& args) {
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
+  // Scenes given as files are inputs.
+  checkOutputs({{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}}, args.scenes);
   if (!args.chart.empty()) checkChartCanBeMade(args.chart);  // a wrong name or no font fails now
   for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
     if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes

@@ -19,9 +19,8 @@ struct CompareArgs {
 };
 
 int runCompare(const CompareArgs& args) {
-  for (const std::string* out : {&args.heatmap, &args.heatmapPng, &args.json}) {
-    if (!out->empty()) checkNotAnInput(*out, {args.test, args.reference});
-  }
+  checkOutputs({{"--heatmap", args.heatmap}, {"--heatmap-png", args.heatmapPng}, {"--json", args.json}},
+               {args.test, args.reference});
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;

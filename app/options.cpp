@@ -178,12 +178,33 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings) {
   return scene;
 }
 
-void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs) {
+namespace {
+
+// Whether two paths name one file: the same file where both exist, else the same path once
+// made absolute and normalised through what exists of it.
+bool sameFile(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  for (const std::string& input : inputs) {
-    if (fs::exists(output, ec) && fs::equivalent(output, input, ec)) {
-      throw usageError("output " + output + " is also an input; refusing to overwrite it");
+  std::error_code ec, ea, eb;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  const fs::path pa = fs::weakly_canonical(a, ea), pb = fs::weakly_canonical(b, eb);
+  return !ea && !eb && pa == pb;
+}
+
+}  // namespace
+
+void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputOption& out = outputs[i];
+    if (out.path.empty()) continue;
+    for (const std::string& input : inputs) {
+      if (sameFile(out.path, input)) {
+        throw usageError("output " + out.path + " is also an input; refusing to overwrite it");
+      }
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (!outputs[j].path.empty() && sameFile(out.path, outputs[j].path)) {
+        throw usageError(outputs[j].option + " and " + out.option + " name the same file " + out.path);
+      }
     }
   }
 }

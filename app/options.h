@@ -35,8 +35,13 @@ void finishRenderSettings(RenderSettings& settings);
 // command line's camera, size and attribute overrides applied.
 Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
-// Throws usageError when `output` names the same file as one of `inputs`.
-void checkNotAnInput(const std::string& output, const std::vector<std::string>& inputs);
+// An output file and the option that names it ("--json"); an empty path: not asked for.
+struct OutputOption {
+  std::string option, path;
+};
+// Throws usageError when an output names the same file as one of `inputs`, or as another
+// output (written one after the other, the last would silently replace the first).
+void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
 
 // Milliseconds elapsed since `start` (steady clock).
 double millisecondsSince(long long startNanoseconds);

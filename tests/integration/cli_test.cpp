@@ -375,6 +375,25 @@ TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   const CliRun r = run("compare " + exr + " " + exr + " --heatmap " + exr);
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_EQ(fs::file_size(exr), size);
+  // Two outputs naming one file, the second spelled another way: the first would be lost.
+  const std::string png = (dir / "h.png").string(), samePng = (dir / "." / "h.png").string();
+  const CliRun twice = run("compare " + exr + " " + exr + " --heatmap-png " + png + " --json " + samePng);
+  EXPECT_EQ(twice.exitCode, 2) << twice.output;
+  EXPECT_NE(twice.output.find("--heatmap-png and --json name the same file"), std::string::npos) << twice.output;
+  EXPECT_FALSE(fs::exists(png));
+  // bench: its outputs are checked against each other and against the scene files it reads.
+  const CliRun benchTwice = run("bench cube --runs 1 -q --json " + (dir / "b.json").string() + " --csv " +
+                                (dir / "b.json").string());
+  EXPECT_EQ(benchTwice.exitCode, 2) << benchTwice.output;
+  EXPECT_NE(benchTwice.output.find("--json and --csv name the same file"), std::string::npos) << benchTwice.output;
+  EXPECT_FALSE(fs::exists(dir / "b.json"));
+  const fs::path obj = dir / "tri.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::uintmax_t objSize = fs::file_size(obj);
+  const CliRun overScene = run("bench " + obj.string() + " --runs 1 -q --csv " + obj.string());
+  EXPECT_EQ(overScene.exitCode, 2) << overScene.output;
+  EXPECT_NE(overScene.output.find("is also an input"), std::string::npos) << overScene.output;
+  EXPECT_EQ(fs::file_size(obj), objSize);
 }
 
 }  // namespace
