@@ -84,6 +84,9 @@ int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? defaultSceneNames() : expandSceneGroups(args.scenes);
+  std::vector<std::string> inputs = args.scenes;  // scenes given as files, and the bench results
+  if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
+  checkOutputs({{"--json", args.json}}, inputs);
   if (!args.out.empty()) makeFolder(args.out);
   if (!args.report.empty()) makeFolder(args.report);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");

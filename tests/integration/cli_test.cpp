@@ -394,6 +394,14 @@ TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
   EXPECT_EQ(overScene.exitCode, 2) << overScene.output;
   EXPECT_NE(overScene.output.find("is also an input"), std::string::npos) << overScene.output;
   EXPECT_EQ(fs::file_size(obj), objSize);
+  // render and check do not write over the scene file they read either.
+  for (const std::string& command : {"render " + obj.string() + " -o " + obj.string(),
+                                     "check " + obj.string() + " -q --json " + obj.string()}) {
+    const CliRun over = run(command);
+    EXPECT_EQ(over.exitCode, 2) << command << "\n" << over.output;
+    EXPECT_NE(over.output.find("is also an input"), std::string::npos) << over.output;
+    EXPECT_EQ(fs::file_size(obj), objSize) << command;
+  }
 }
 
 }  // namespace
