@@ -3,7 +3,6 @@
 #include "app/bench_chart.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,6 +16,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
+#include "scenes/scene_loader.h"
 
 namespace rc::app {
 namespace chart {
@@ -483,21 +483,12 @@ Rgb8Image toImage(const Drawing& d, Fonts& fonts) {
   return image;
 }
 
-std::string lower(std::string text) {
-  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
-
 }  // namespace
 
 ChartFormat chartFormatOf(const std::string& path) {
-  const std::string name = lower(path);
-  const auto endsWith = [&](const char* suffix) {
-    const std::string s(suffix);
-    return name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
-  };
-  if (endsWith(".svg")) return ChartFormat::kSvg;
-  if (endsWith(".png")) return ChartFormat::kPng;
+  const std::string extension = lowerExtension(path);
+  if (extension == ".svg") return ChartFormat::kSvg;
+  if (extension == ".png") return ChartFormat::kPng;
   throw usageError("--chart: " + path + ": name it .svg or .png, the format to write");
 }
 

@@ -11,13 +11,13 @@
 #include "scenes/registry.h"
 
 namespace rc {
-namespace {
-
-std::string lowerExtension(const std::string& spec) {
-  std::string extension = std::filesystem::path(spec).extension().string();
+std::string lowerExtension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   return extension;
 }
+
+namespace {
 
 Scene meshScene(const std::string& spec, Mesh mesh, std::optional<CameraSpec> camera, const SceneOverrides& o) {
   const int width = o.width ? o.width : (camera ? camera->width : 800);

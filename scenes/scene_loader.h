@@ -22,4 +22,7 @@ struct SceneOverrides {
 // its bounding box (scenes/loaders/framing.h). Throws usageError / badInput / ioError.
 Scene loadScene(const std::string& spec, const SceneOverrides& overrides = {});
 
+// The extension of a path's file name, with its dot, in lower case: ".obj", ".png"; "" for none.
+std::string lowerExtension(const std::string& path);
+
 }  // namespace rc

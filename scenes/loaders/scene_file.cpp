@@ -12,6 +12,7 @@
 #include "scenes/loaders/gltf_loader.h"
 #include "scenes/loaders/obj_loader.h"
 #include "scenes/loaders/read_file.h"
+#include "scenes/scene_loader.h"
 
 namespace rc {
 namespace {
@@ -144,8 +145,7 @@ Scene loadSceneFile(const std::string& path) {
     if (!entry.contains("path")) r.fail(at + "/path", "is required");
     const std::string file = r.meshPath(entry["path"], at + "/path");
     const glm::dmat4 transform = entry.contains("transform") ? r.transform(entry["transform"], at + "/transform") : glm::dmat4(1.0);
-    std::string extension = fs::path(file).extension().string();
-    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string extension = lowerExtension(file);
     if (extension == ".obj") {
       appendMesh(mesh, loadObj(file), transform);
     } else if (extension == ".gltf" || extension == ".glb") {
