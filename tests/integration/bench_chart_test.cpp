@@ -10,6 +10,7 @@
 #include "app/bench_chart.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "tests/test_files.h"
 
 namespace {
 
@@ -257,3 +258,41 @@ TEST(BenchChart, PngIsTheSameLayoutDrawn) {
 }
 
 }  // namespace
+
+// What bench writes, readBenchJson reads back; a row whose figures no chart can place (an error
+// below zero, a time that is not positive) is refused, naming the file, the row and the field.
+// (JSON has no infinity: nlohmann refuses 1e999 as it parses, and bench writes one as null.)
+TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
+  const rc::testing::TempDir temp;
+  const std::vector<BenchRow> rows = craftedRows();
+  const rc::app::BenchMachine machine{"test cpu", 2, "avx2", "avx2", "GCC 12", "3.13.5", "0.1"};
+  const std::string good = temp.write("good.json", rc::app::benchJson(rows, machine));
+  const rc::app::BenchResults back = rc::app::readBenchJson(good);
+  ASSERT_EQ(back.rows.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(back.rows[i].setting, rows[i].setting);
+    EXPECT_EQ(back.rows[i].rasterMs, rows[i].rasterMs);
+    EXPECT_EQ(back.rows[i].baryP999, rows[i].baryP999);
+    EXPECT_EQ(back.rows[i].disagreementFraction, rows[i].disagreementFraction);
+  }
+  ASSERT_TRUE(back.machine.has_value());
+  EXPECT_EQ(back.machine->cpu, "test cpu");
+  struct Case {
+    const char* field;
+    const char* value;  // JSON text
+  };
+  for (const Case c : {Case{"disagreement_fraction", "-0.001"}, Case{"bary_p999_error", "-1e-7"},
+                       Case{"raster_ms", "0"}, Case{"raster_ms", "-3"}}) {
+    std::string text = rc::app::benchJson(rows, machine);
+    // Row 1's field, whatever the writer's spacing: replace the value after its second mention.
+    const std::string key = std::string("\"") + c.field + "\": ";
+    std::size_t at = text.find(key);
+    at = text.find(key, at + 1);
+    ASSERT_NE(at, std::string::npos) << c.field;
+    const std::size_t end = text.find_first_of(",\n}", at + key.size());
+    text.replace(at + key.size(), end - at - key.size(), c.value);
+    const std::string bad = temp.write("bad.json", text);
+    rc::testing::expectError([&] { rc::app::readBenchJson(bad); }, rc::ExitCode::kBadInput,
+                             {bad + ": /rows/1/" + c.field + ": is "}, std::string(c.field) + " = " + c.value);
+  }
+}
