@@ -36,9 +36,7 @@ int runBenchCommand(BenchArgs& args) {
   // Scenes given as files are inputs.
   checkOutputs({{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}}, args.scenes);
   if (!args.chart.empty()) checkChartCanBeMade(args.chart);  // a wrong name or no font fails now
-  for (const std::string* out : {&args.json, &args.csv, &args.chart}) {
-    if (!out->empty()) AtomicOutput check(*out);  // a missing folder fails now, not after minutes
-  }
+  checkOutputFolders({{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}});
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
   // Per scene: the reference's builds, each round of traces and frames, then the errors.
@@ -80,9 +78,11 @@ int runBenchCommand(BenchArgs& args) {
   // Everything is made before anything is written, so that a failure (the chart's font, say)
   // leaves no file of a partial set behind.
   const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
-  if (!args.json.empty()) writeTextFile(args.json, benchJson(rows, machine));
-  if (!args.csv.empty()) writeTextFile(args.csv, benchCsv(rows));
-  if (!args.chart.empty()) writeBenchChart(chart, args.chart);
+  WrittenOutputs outputs;
+  outputs.write(args.json, [&](const std::string& path) { writeTextFile(path, benchJson(rows, machine)); });
+  outputs.write(args.csv, [&](const std::string& path) { writeTextFile(path, benchCsv(rows)); });
+  outputs.write(args.chart, [&](const std::string& path) { writeBenchChart(chart, path); });
+  outputs.keep();
   return 0;
 }
 

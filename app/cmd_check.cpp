@@ -47,29 +47,25 @@ std::string fileStem(const std::string& scene, std::set<std::string>& used) {
   return unique;
 }
 
-void makeFolder(const std::string& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
-}
-
 // The three pictures of a scene, made once and written to every folder that wants them.
 struct ScenePictures {
   Rgb8Image raster, reference, heatmap;
 };
 
-void writePngs(const std::string& dir, const std::string& stem, const ScenePictures& p) {
+void writePngs(const std::string& dir, const std::string& stem, const ScenePictures& p, WrittenOutputs& outputs) {
   const std::string base = (fs::path(dir) / stem).string();
-  writePng(p.raster, base + ".raster.png");
-  writePng(p.reference, base + ".reference.png");
-  writePng(p.heatmap, base + ".heatmap.png");
+  for (const auto& [image, suffix] : {std::pair{&p.raster, ".raster.png"}, std::pair{&p.reference, ".reference.png"},
+                                      std::pair{&p.heatmap, ".heatmap.png"}}) {
+    outputs.write(base + suffix, [&](const std::string& path) { writePng(*image, path); });
+  }
 }
 
-void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r) {
+void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r, WrittenOutputs& outputs) {
   const std::string base = (fs::path(dir) / stem).string();
-  writeExr(r.raster, base + ".raster.exr");
-  writeExr(r.reference, base + ".reference.exr");
-  writeExr(r.heatmap, base + ".heatmap.exr");
+  for (const auto& [image, suffix] : {std::pair{&r.raster, ".raster.exr"}, std::pair{&r.reference, ".reference.exr"},
+                                      std::pair{&r.heatmap, ".heatmap.exr"}}) {
+    outputs.write(base + suffix, [&](const std::string& path) { writeExr(*image, path); });
+  }
 }
 
 std::string settingsLine(const RenderSettings& s) {
@@ -86,10 +82,8 @@ int runCheck(CheckArgs& args) {
   args.scenes = args.scenes.empty() ? defaultSceneNames() : expandSceneGroups(args.scenes);
   std::vector<std::string> inputs = args.scenes;  // scenes given as files, and the bench results
   if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
-  checkOutputs({{"--json", args.json}}, inputs);
-  if (!args.out.empty()) makeFolder(args.out);
-  if (!args.report.empty()) makeFolder(args.report);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
+  checkOutputs({{"--json", args.json}}, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
   const bool wantHeatmap = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
@@ -101,6 +95,11 @@ int runCheck(CheckArgs& args) {
     progress.step("loading " + spec);
     scenes.push_back(loadScene(spec, args.settings));
   }
+  // The folders are made before any scene is rendered, so one that cannot be fails first.
+  WrittenOutputs outputs;
+  if (!args.out.empty()) outputs.makeFolder(args.out);
+  if (!args.report.empty()) outputs.makeFolder(args.report);
+  checkOutputFolders({{"--json", args.json}});
 
   std::printf("%-22s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", "scene", "triangles", "size", "verdict", "bary max",
               "bary p999", "depth max", "disagree", "raster ms", "ref ms");
@@ -127,12 +126,12 @@ int runCheck(CheckArgs& args) {
                                                : ScenePictures{};
     if (!args.out.empty()) {
       progress.step(scene.name + ": writing EXR and PNG files");
-      writeExrs(args.out, stem, r);
-      writePngs(args.out, stem, pictures);
+      writeExrs(args.out, stem, r, outputs);
+      writePngs(args.out, stem, pictures, outputs);
     }
     if (!args.report.empty()) {
       progress.step(scene.name + ": writing report images");
-      writePngs(args.report, stem, pictures);
+      writePngs(args.report, stem, pictures, outputs);
     }
     allPass = allPass && r.report.pass;
     reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report});
@@ -148,12 +147,17 @@ int runCheck(CheckArgs& args) {
     rows.push_back(row);
   }
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
-  if (!args.report.empty()) writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
-  if (!args.json.empty()) {
+  if (!args.report.empty()) {
+    outputs.write((fs::path(args.report) / "index.html").string(), [&](const std::string&) {
+      writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
+    });
+  }
+  outputs.write(args.json, [&](const std::string& path) {
     const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
-    writeTextFile(args.json, j.dump(2) + "\n");
-  }
+    writeTextFile(path, j.dump(2) + "\n");
+  });
+  outputs.keep();
   return allPass ? 0 : 1;
 }
 

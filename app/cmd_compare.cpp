@@ -19,8 +19,10 @@ struct CompareArgs {
 };
 
 int runCompare(const CompareArgs& args) {
-  checkOutputs({{"--heatmap", args.heatmap}, {"--heatmap-png", args.heatmapPng}, {"--json", args.json}},
-               {args.test, args.reference});
+  const std::vector<OutputOption> outputList = {
+      {"--heatmap", args.heatmap}, {"--heatmap-png", args.heatmapPng}, {"--json", args.json}};
+  checkOutputs(outputList, {args.test, args.reference});
+  checkOutputFolders(outputList);
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
@@ -29,9 +31,11 @@ int runCompare(const CompareArgs& args) {
                                              args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
-  if (!args.heatmap.empty()) writeExr(heatmap, args.heatmap);
-  if (!args.heatmapPng.empty()) writePng(heatmapImage(heatmap), args.heatmapPng);
-  if (!args.json.empty()) writeTextFile(args.json, reportToJson(report).dump(2) + "\n");
+  WrittenOutputs outputs;
+  outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
+  outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
+  outputs.write(args.json, [&](const std::string& path) { writeTextFile(path, reportToJson(report).dump(2) + "\n"); });
+  outputs.keep();
   return report.pass ? 0 : 1;
 }
 

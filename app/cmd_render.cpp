@@ -19,6 +19,7 @@ struct RenderArgs {
 int runRender(RenderArgs& args) {
   finishRenderSettings(args.settings);
   checkOutputs({{"-o", args.output}}, {args.scene});  // a scene file is not overwritten by its render
+  checkOutputFolders({{"-o", args.output}});
   const Scene scene = loadScene(args.scene, args.settings);
   setExrThreads(args.settings.threads);
   const long long start = nowNanoseconds();

@@ -8,10 +8,13 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "scenes/scene_loader.h"
 
 namespace rc::app {
+
+namespace fs = std::filesystem;
 namespace {
 
 // CLI11's NonNegativeNumber lets NaN through (NaN < 0 is false); this one does not.
@@ -183,7 +186,6 @@ namespace {
 // Whether two paths name one file: the same file where both exist, else the same path once
 // made absolute and normalised through what exists of it.
 bool sameFile(const std::string& a, const std::string& b) {
-  namespace fs = std::filesystem;
   std::error_code ec, ea, eb;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
   const fs::path pa = fs::weakly_canonical(a, ea), pb = fs::weakly_canonical(b, eb);
@@ -207,6 +209,32 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
       }
     }
   }
+}
+
+void checkOutputFolders(const std::vector<OutputOption>& outputs) {
+  for (const OutputOption& out : outputs) {
+    if (!out.path.empty()) AtomicOutput probe(out.path);  // throws as a write would; creates nothing
+  }
+}
+
+WrittenOutputs::~WrittenOutputs() {
+  if (kept_) return;
+  std::error_code ec;
+  for (auto f = files_.rbegin(); f != files_.rend(); ++f) fs::remove(*f, ec);
+  for (const std::string& d : folders_) fs::remove(d, ec);  // only if empty
+}
+
+void WrittenOutputs::makeFolder(const std::string& dir) {
+  std::error_code ec;
+  std::vector<std::string> missing;
+  for (fs::path p = fs::absolute(dir, ec); !ec && !p.empty() && p != p.parent_path(); p = p.parent_path()) {
+    if (fs::exists(p, ec) || ec) break;
+    missing.push_back(p.string());
+  }
+  ec.clear();
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
+  folders_.insert(folders_.end(), missing.begin(), missing.end());
 }
 
 long long nowNanoseconds() {

@@ -42,6 +42,36 @@ struct OutputOption {
 // Throws usageError when an output names the same file as one of `inputs`, or as another
 // output (written one after the other, the last would silently replace the first).
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
+// Throws ioError naming the output when its folder is missing or it is a folder itself: called
+// before the work, so that a typo fails now rather than after minutes of rendering.
+void checkOutputFolders(const std::vector<OutputOption>& outputs);
+
+// The files and folders one command writes, taken back if it stops with an error part way (one
+// file written, the disk full at the next): it then leaves no folder it made and no file it
+// wrote. A file it replaced is gone either way. keep() once everything is written.
+class WrittenOutputs {
+ public:
+  WrittenOutputs() = default;
+  WrittenOutputs(const WrittenOutputs&) = delete;
+  WrittenOutputs& operator=(const WrittenOutputs&) = delete;
+  ~WrittenOutputs();
+
+  // Makes the folder and any missing level above it; throws ioError naming it.
+  void makeFolder(const std::string& dir);
+  // Writes `path` through write(path) unless the path is empty (not asked for), and records it.
+  template <class Write>
+  void write(const std::string& path, Write&& write) {
+    if (path.empty()) return;
+    write(path);
+    files_.push_back(path);
+  }
+  void keep() { kept_ = true; }
+
+ private:
+  std::vector<std::string> files_;
+  std::vector<std::string> folders_;  // the levels makeFolder made, deepest first
+  bool kept_ = false;
+};
 
 // Milliseconds elapsed since `start` (steady clock).
 double millisecondsSince(long long startNanoseconds);

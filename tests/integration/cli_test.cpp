@@ -1,6 +1,7 @@
 // The CLI as a user meets it: exit codes, messages, and files written or not written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,51 @@ TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   EXPECT_EQ(j["verdict"], "pass");
   EXPECT_EQ(j["scenes"].size(), 2u);
+}
+
+// check writes a scene's files as it goes; when it stops with an error part way, it takes back
+// what it wrote and the folders it made, and a bad scene or bench file makes no folder at all.
+TEST(Cli, CheckThatFailsPartWayLeavesNothingItWrote) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  fs::create_directories(dir / "out" / "floor.heatmap.png");  // the second scene's last image cannot be written
+  const CliRun r = run("check cube floor -q --out " + (dir / "out").string() + " --report " + (dir / "rep" / "new").string() +
+                       " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.exitCode, 4) << r.output;
+  EXPECT_NE(r.output.find("floor.heatmap.png"), std::string::npos) << r.output;
+  std::vector<std::string> left;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) left.push_back(fs::relative(entry.path(), dir).string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"out", "out/floor.heatmap.png"})) << "cube's files, the report and its folders";
+  for (const std::string& args : {std::string("check cube nosuch"), "check cube --bench-json " + (dir / "none.json").string()}) {
+    const CliRun bad = run(args + " -q --out " + (dir / "o2").string() + " --report " + (dir / "r2").string());
+    EXPECT_NE(bad.exitCode, 0) << args;
+    EXPECT_FALSE(fs::exists(dir / "o2")) << args;
+    EXPECT_FALSE(fs::exists(dir / "r2")) << args;
+  }
+}
+
+// An output whose folder is missing fails before the work, and before any other output is
+// written: compare's heatmap is not left behind when its --json cannot be written.
+TEST(Cli, OutputInAMissingFolderFailsFirstAndWritesNothing) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string exr = (dir / "cube.exr").string(), missing = (dir / "nodir" / "x.json").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  const CliRun compare = run("compare " + exr + " " + exr + " --heatmap " + (dir / "h.exr").string() + " --json " + missing);
+  EXPECT_EQ(compare.exitCode, 4) << compare.output;
+  EXPECT_NE(compare.output.find(missing + ": cannot write: folder"), std::string::npos) << compare.output;
+  EXPECT_FALSE(fs::exists(dir / "h.exr"));
+  const CliRun render = run("render cube -o " + (dir / "nodir" / "c.exr").string());
+  EXPECT_EQ(render.exitCode, 4) << render.output;
+  const CliRun bench = run("bench cube --runs 1 -q --json " + (dir / "b.json").string() + " --csv " + missing);
+  EXPECT_EQ(bench.exitCode, 4) << bench.output;
+  EXPECT_EQ(bench.output.find("medians of"), std::string::npos) << "fails before timing anything";
+  EXPECT_FALSE(fs::exists(dir / "b.json"));
+  // check's --json may go into its --out folder, which check makes.
+  const CliRun check = run("check cube -q --out " + (dir / "out").string() + " --json " + (dir / "out" / "r.json").string());
+  EXPECT_EQ(check.exitCode, 0) << check.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "r.json"));
 }
 
 TEST(Cli, AffineCheckExitsOne) {
