@@ -27,6 +27,10 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
   if (fs::is_directory(target, ec)) {
     throw ioError(finalPath_, "cannot write: it is a folder");
   }
+  // The rename would replace a file its owner made read-only: it must stay as it is.
+  if (fs::exists(target, ec) && access(finalPath_.c_str(), W_OK) != 0) {
+    throw ioError(finalPath_, std::string("cannot write: ") + std::strerror(errno));
+  }
   tempPath_ = (folder / ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()) +
                          "-" + std::to_string(counter.fetch_add(1))))
                   .string();

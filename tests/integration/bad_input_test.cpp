@@ -8,6 +8,8 @@
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 
+#include <unistd.h>
+
 #include <array>
 #include <cstring>
 #include <filesystem>
@@ -310,6 +312,26 @@ TEST(BadInput, OutputPaths) {
   EXPECT_EQ(fs::file_size(exr), size) << "the input was overwritten";
   const Outcome folder = rastercheck("render cube -o " + dir.path().string());
   EXPECT_EQ(folder.exitCode, 4) << folder.output;
+}
+
+// A file its owner made read-only stays as it is. Outputs are written by renaming a temporary
+// over the target, which replaces the file whatever its mode, so the write is refused first.
+// Root may write anything: as root, the commands run as nobody (setpriv, from util-linux).
+TEST(BadInput, ReadOnlyOutputFileStaysUntouched) {
+  TempDir dir;
+  fs::permissions(dir.path(), fs::perms::all);  // the folder is writable by all: only the file is protected
+  const std::string target = dir.write("old.exr", "keep");
+  fs::permissions(target, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  const std::string as = geteuid() == 0 ? "setpriv --reuid 65534 --regid 65534 --clear-groups " : "";
+  const Outcome render = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " render cube -o " + target);
+  EXPECT_EQ(render.exitCode, 4) << render.output;
+  EXPECT_NE(render.output.find(target + ": cannot write"), std::string::npos) << render.output;
+  const Outcome check = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " check cube -q --json " + target);
+  EXPECT_EQ(check.exitCode, 4) << check.output;
+  EXPECT_EQ(readAll(target), "keep");
+  // The same user writes a new file there: the refusal is the file's, not the folder's.
+  const Outcome fresh = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " render cube -o " + dir.file("new.exr"));
+  EXPECT_EQ(fresh.exitCode, 0) << fresh.output;
 }
 
 TEST(BadInput, Options) {
