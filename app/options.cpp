@@ -30,33 +30,57 @@ const CLI::Validator kFiniteNonNegative(
     },
     "FINITE>=0");
 
+std::string lowerCase(std::string text) {
+  for (char& ch : text) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return text;
+}
+
+// An option that takes one of `choices` by name, in any case, into `target`; its default is
+// target's value as given. CLI11's CheckedTransformer also took the enum's number (`--mode 1`
+// for affine) and showed a name->number table in the help.
+template <class Enum>
+void addChoice(CLI::App* command, const std::string& name, Enum& target,
+               const std::vector<std::pair<std::string, Enum>>& choices, const std::string& help) {
+  std::string names, fallback;
+  for (const auto& [choice, value] : choices) {
+    names += (names.empty() ? "" : "|") + choice;
+    if (value == target) fallback = choice;
+  }
+  command
+      ->add_option_function<std::string>(
+          name,
+          [&target, choices](const std::string& text) {
+            for (const auto& [choice, value] : choices) {
+              if (choice == lowerCase(text)) target = value;
+            }
+          },
+          help)
+      ->check(CLI::Validator(
+          [choices, names](std::string& text) -> std::string {
+            for (const auto& choice : choices) {
+              if (choice.first == lowerCase(text)) return "";
+            }
+            return "must be one of " + names + ", got '" + text + "'";
+          },
+          ""))
+      ->type_name(names)
+      ->default_str(fallback);
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App* command, RenderSettings& s) {
-  command->add_option("--mode", s.raster.interpolation, "rasterizer interpolation")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Interpolation>{{"perspective", Interpolation::kPerspective},
-                                               {"affine", Interpolation::kAffine}},
-          CLI::ignore_case))
-      ->default_str("perspective");
-  command->add_option("--precision", s.raster.precision, "rasterizer arithmetic")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Precision>{{"float", Precision::kFloat}, {"double", Precision::kDouble}},
-          CLI::ignore_case))
-      ->default_str("float");
-  command->add_option("--depth-mapping", s.raster.depthMapping,
-                      "rasterizer depth-test key: 1/w, or the standard d = 1 - n/w (docs/rasterizer.md)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, DepthMapping>{{"inverse-w", DepthMapping::kInverseW},
-                                              {"standard", DepthMapping::kStandard}},
-          CLI::ignore_case))
-      ->default_str("inverse-w");
-  command->add_option("--cull", s.raster.culling,
-                      "rasterizer back faces: auto culls them where they cannot be seen (a closed solid "
-                      "wholly beyond the near plane, docs/rasterizer.md), none draws them")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Culling>{{"auto", Culling::kAuto}, {"none", Culling::kNone}}, CLI::ignore_case))
-      ->default_str("auto");
+  addChoice<Interpolation>(command, "--mode", s.raster.interpolation,
+                           {{"perspective", Interpolation::kPerspective}, {"affine", Interpolation::kAffine}},
+                           "rasterizer interpolation");
+  addChoice<Precision>(command, "--precision", s.raster.precision,
+                       {{"float", Precision::kFloat}, {"double", Precision::kDouble}}, "rasterizer arithmetic");
+  addChoice<DepthMapping>(command, "--depth-mapping", s.raster.depthMapping,
+                          {{"inverse-w", DepthMapping::kInverseW}, {"standard", DepthMapping::kStandard}},
+                          "rasterizer depth-test key: 1/w, or the standard d = 1 - n/w (docs/rasterizer.md)");
+  addChoice<Culling>(command, "--cull", s.raster.culling, {{"auto", Culling::kAuto}, {"none", Culling::kNone}},
+                     "rasterizer back faces: auto culls them where they cannot be seen (a closed solid "
+                     "wholly beyond the near plane, docs/rasterizer.md), none draws them");
   command->add_option("--subpixel-bits", s.raster.subpixelBits,
                       "fraction bits of snapped vertex positions used for coverage (1..16), or none: coverage of "
                       "the unsnapped triangle, decided exactly")
@@ -73,25 +97,23 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
             if (digits && std::stoi(value) >= 1 && std::stoi(value) <= 16) return "";
             return "must be 1..16 or none, got " + value;
           },
-          "1..16|none"))
+          ""))
+      ->type_name("1..16|none")
       ->default_str("8");
-  command->add_option("--raster-isa", s.raster.isa,
-                      "instruction set of the rasterizer's pixel kernels; every choice gives the same bits")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, KernelIsa>{{"auto", KernelIsa::kAuto}, {"sse2", KernelIsa::kSse2},
-                                           {"avx2", KernelIsa::kAvx2}, {"avx512", KernelIsa::kAvx512}},
-          CLI::ignore_case))
-      ->default_str("auto");
-  command->add_flag("--no-diagnostics{false}", s.raster.diagnostics,
-                    "rasterizer: leave out bound.bary, bound.depth, edge.dist and depth.tie (compare then "
-                    "falls back to fixed thresholds)");
+  addChoice<KernelIsa>(command, "--raster-isa", s.raster.isa,
+                       {{"auto", KernelIsa::kAuto}, {"sse2", KernelIsa::kSse2}, {"avx2", KernelIsa::kAvx2},
+                        {"avx512", KernelIsa::kAvx512}},
+                       "instruction set of the rasterizer's pixel kernels; every choice gives the same bits");
+  command->add_flag_function(
+      "--no-diagnostics", [&s](std::int64_t given) { s.raster.diagnostics = given <= 0; },  // =false counts -1
+      "rasterizer: leave out bound.bary, bound.depth, edge.dist and depth.tie (compare then falls back to fixed "
+      "thresholds)");
   command->add_option("--threads", s.threads, "worker threads, 0 = all cores")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  command->add_option("--embree-isa", s.reference.isa,
-                      "Embree instruction set, pinned so results do not change with the CPU")
-      ->check(CLI::IsMember({"sse2", "sse4.2", "avx", "avx2", "avx512"}))
-      ->capture_default_str();
+  addChoice<std::string>(command, "--embree-isa", s.reference.isa,
+                         {{"sse2", "sse2"}, {"sse4.2", "sse4.2"}, {"avx", "avx"}, {"avx2", "avx2"}, {"avx512", "avx512"}},
+                         "Embree instruction set, pinned so results do not change with the CPU");
   command->add_option("--size", s.size, "image size WxH, overriding the scene's (e.g. 1920x1080)");
   command->add_option("--eye", s.eye, "camera position x,y,z, overriding the scene's");
   command->add_option("--target", s.target, "point the camera looks at, x,y,z");
@@ -105,14 +127,10 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
 }
 
 void addThresholdOptions(CLI::App* command, Thresholds& t) {
-  command->add_option("--heatmap-shows", t.heatmap,
-                      "what the heatmap colours show: error, ulps, or bound (error / bound)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, HeatmapQuantity>{{"error", HeatmapQuantity::kError},
-                                                 {"ulps", HeatmapQuantity::kUlps},
-                                                 {"bound", HeatmapQuantity::kBoundRatio}},
-          CLI::ignore_case))
-      ->default_str("error");
+  addChoice<HeatmapQuantity>(command, "--heatmap-shows", t.heatmap,
+                             {{"error", HeatmapQuantity::kError}, {"ulps", HeatmapQuantity::kUlps},
+                              {"bound", HeatmapQuantity::kBoundRatio}},
+                             "what the heatmap colours show: error, ulps, or bound (error / bound)");
   // Without the diagnostics channels (images from elsewhere), these fixed limits gate instead.
   command->add_option("--max-bary", t.bary, "gate without bound channels: max barycentric error (absolute)")
       ->check(kFiniteNonNegative)->capture_default_str();

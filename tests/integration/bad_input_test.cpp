@@ -340,7 +340,10 @@ TEST(BadInput, Options) {
                            "check --threads 1000000000", "check --size 0x0", "check --size 99999x10",
                            "check --size 10", "check --fov 180", "check --eye 1,2", "check --eye 1,2,nan",
                            "check --max-triangles 0", "check --mode affine --mode", "render cube -o",
-                           "check --subpixel-bits 0", "check --embree-isa neon"}) {
+                           "check --subpixel-bits 0", "check --embree-isa neon",
+                           // a choice's name only, not the number behind it (CLI11 took `--mode 1` as affine)
+                           "check --mode 1", "check --precision 0", "check --raster-isa 3", "check --cull 1",
+                           "compare a.exr b.exr --heatmap-shows 2"}) {
     const Outcome r = rastercheck(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
   }
