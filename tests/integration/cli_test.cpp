@@ -69,6 +69,10 @@ TEST(Cli, CheckThatFailsPartWayLeavesNothingItWrote) {
     EXPECT_FALSE(fs::exists(dir / "o2")) << args;
     EXPECT_FALSE(fs::exists(dir / "r2")) << args;
   }
+  // A gate that fails is a verdict, not an error: its heatmaps are what the user needs.
+  const CliRun failed = run("check floor -q --mode affine --out " + (dir / "o3").string());
+  EXPECT_EQ(failed.exitCode, 1) << failed.output;
+  EXPECT_TRUE(fs::exists(dir / "o3" / "floor.heatmap.png"));
 }
 
 // An output whose folder is missing fails before the work, and before any other output is
