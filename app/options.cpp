@@ -221,6 +221,10 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
         throw usageError("output " + out.path + " is also an input; refusing to overwrite it");
       }
     }
+    // Two outputs into one device (/dev/null) are harmless; into one file, the last would win.
+    std::error_code ec;
+    const fs::file_status status = fs::status(out.path, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status)) continue;
     for (std::size_t j = 0; j < i; ++j) {
       if (!outputs[j].path.empty() && sameFile(out.path, outputs[j].path)) {
         throw usageError(outputs[j].option + " and " + out.option + " name the same file " + out.path);
@@ -238,7 +242,9 @@ void checkOutputFolders(const std::vector<OutputOption>& outputs) {
 WrittenOutputs::~WrittenOutputs() {
   if (kept_) return;
   std::error_code ec;
-  for (auto f = files_.rbegin(); f != files_.rend(); ++f) fs::remove(*f, ec);
+  for (auto f = files_.rbegin(); f != files_.rend(); ++f) {
+    if (fs::is_regular_file(fs::symlink_status(*f, ec))) fs::remove(*f, ec);  // never a device or a link
+  }
   for (const std::string& d : folders_) fs::remove(d, ec);  // only if empty
 }
 

@@ -1,5 +1,7 @@
 // Output files appear whole or not at all: writers write to a temporary file in the target's
-// folder and rename it into place on success; an abandoned temporary is removed.
+// folder and rename it into place on success; an abandoned temporary is removed. A target that
+// is a symbolic link keeps it: the file it names is replaced. A device or pipe (/dev/null, a
+// FIFO) is written in place, since a rename would replace the device itself.
 #pragma once
 
 #include <string>
@@ -17,13 +19,15 @@ class AtomicOutput {
 
   const std::string& tempPath() const { return tempPath_; }
   const std::string& finalPath() const { return finalPath_; }
-  // Renames the temporary over the final path; throws ioError on failure.
+  // Renames the temporary over the final path (nothing for a device); throws ioError on failure.
   void commit();
 
  private:
   std::string finalPath_;
   std::string tempPath_;
+  std::string renameTo_;  // finalPath_, or the file it links to
   bool committed_ = false;
+  bool direct_ = false;  // a device or pipe, written in place
 };
 
 // Writes `content` to `path` through an AtomicOutput; throws ioError naming the path.

@@ -1,11 +1,15 @@
 // The CLI as a user meets it: exit codes, messages, and files written or not written.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <embree3/rtcore_config.h>
@@ -451,6 +455,24 @@ TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
     EXPECT_EQ(over.exitCode, 2) << command << "\n" << over.output;
     EXPECT_NE(over.output.find("is also an input"), std::string::npos) << over.output;
     EXPECT_EQ(fs::file_size(obj), objSize) << command;
+  }
+}
+
+// Outputs sent to a device (here a null device of our own: as root, a regression would
+// replace /dev/null itself) go into it, and it stays a device; two outputs may share it.
+TEST(Cli, OutputsIntoADeviceLeaveItADevice) {
+  const rc::testing::TempDir temp;
+  const fs::path null = temp.path() / "null";
+  if (mknod(null.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0) {
+    GTEST_SKIP() << "cannot make a device node here (not root): " << std::strerror(errno);
+  }
+  const std::string exr = (temp.path() / "cube.exr").string();
+  for (const std::string& command :
+       {"render cube -o " + null.string(), "bench cube --runs 1 -q --json " + null.string() + " --csv " + null.string(),
+        "render cube -o " + exr, "compare " + exr + " " + exr + " --heatmap " + null.string() + " --json " + null.string()}) {
+    const CliRun r = run(command);
+    EXPECT_EQ(r.exitCode, 0) << command << "\n" << r.output;
+    EXPECT_TRUE(fs::is_character_file(null)) << command;
   }
 }
 
