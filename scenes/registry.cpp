@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "scenes/builtin/builtin.h"
@@ -37,8 +38,9 @@ double SceneArgs::getDouble(const std::string& key, double fallback, double min,
     throw usageError("scene " + scene_ + ": " + key + "=" + text + " is not a number");
   }
   if (!(value >= min && value <= max)) {
-    throw usageError("scene " + scene_ + ": " + key + "=" + text + " is outside [" +
-                     std::to_string(min) + ", " + std::to_string(max) + "]");
+    char range[64];
+    std::snprintf(range, sizeof range, "[%.10g, %.10g]", min, max);
+    throw usageError("scene " + scene_ + ": " + key + "=" + text + " is outside " + range);
   }
   return value;
 }

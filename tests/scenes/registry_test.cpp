@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "scenes/registry.h"
+#include "tests/test_files.h"
 
 namespace rc {
 namespace {
@@ -54,6 +55,9 @@ TEST(Registry, BadNamesAndParametersAreUsageErrors) {
   EXPECT_EQ(errorCode("blob:colour=red"), int(ExitCode::kUsage));
   EXPECT_EQ(errorCode("blob:tris"), int(ExitCode::kUsage));
   EXPECT_EQ(errorCode("floor:tris=2"), int(ExitCode::kUsage));
+  // The range is given as a user would write it, not as "[8.000000, 4000000.000000]".
+  rc::testing::expectError([] { makeBuiltinScene("blob:tris=3"); }, ExitCode::kUsage,
+                           {"scene blob:tris=3: tris=3 is outside [8, 4000000]"}, "blob:tris=3");
 }
 
 Mesh oneTriangle() {
