@@ -20,7 +20,7 @@ struct CompareArgs {
 
 int runCompare(const CompareArgs& args) {
   const std::vector<OutputOption> outputList = {
-      {"--heatmap", args.heatmap}, {"--heatmap-png", args.heatmapPng}, {"--json", args.json}};
+      {"--heatmap", args.heatmap, ".exr"}, {"--heatmap-png", args.heatmapPng, ".png"}, {"--json", args.json}};
   checkOutputs(outputList, {args.test, args.reference});
   checkOutputFolders(outputList);
   const Framebuffer test = readExr(args.test);

@@ -18,7 +18,7 @@ struct RenderArgs {
 
 int runRender(RenderArgs& args) {
   finishRenderSettings(args.settings);
-  checkOutputs({{"-o", args.output}}, {args.scene});  // a scene file is not overwritten by its render
+  checkOutputs({{"-o", args.output, ".exr"}}, {args.scene});  // a scene file is not overwritten by its render
   checkOutputFolders({{"-o", args.output}});
   const Scene scene = loadScene(args.scene, args.settings);
   setExrThreads(args.settings.threads);

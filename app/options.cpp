@@ -221,6 +221,13 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
         throw usageError("output " + out.path + " is also an input; refusing to overwrite it");
       }
     }
+    const std::string extension = lowerExtension(out.path);
+    if (!out.extension.empty() && !extension.empty() && extension != out.extension) {
+      std::string format = out.extension.substr(1);
+      for (char& ch : format) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+      throw usageError(out.option + ": " + out.path + ": the file is written as " + format + "; name it " +
+                       out.extension);
+    }
     // Two outputs into one device (/dev/null) are harmless; into one file, the last would win.
     std::error_code ec;
     const fs::file_status status = fs::status(out.path, ec);

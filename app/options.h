@@ -36,11 +36,15 @@ void finishRenderSettings(RenderSettings& settings);
 Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
 // An output file and the option that names it ("--json"); an empty path: not asked for.
+// `extension` (".exr"): the format written, which a name with another extension contradicts.
 struct OutputOption {
   std::string option, path;
+  std::string extension = {};
 };
 // Throws usageError when an output names the same file as one of `inputs`, or as another
-// output (written one after the other, the last would silently replace the first).
+// output (written one after the other, the last would silently replace the first), or when
+// its name ends in another format's extension (an EXR written to out.png). A name without
+// an extension, or a device, takes any format.
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
 // Throws ioError naming the output when its folder is missing or it is a folder itself: called
 // before the work, so that a typo fails now rather than after minutes of rendering.

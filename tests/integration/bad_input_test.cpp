@@ -312,6 +312,20 @@ TEST(BadInput, OutputPaths) {
   EXPECT_EQ(fs::file_size(exr), size) << "the input was overwritten";
   const Outcome folder = rastercheck("render cube -o " + dir.path().string());
   EXPECT_EQ(folder.exitCode, 4) << folder.output;
+  // A name that says another format than the one written (an EXR in out.png) is a usage error;
+  // a name without an extension takes what is written.
+  for (const std::string& args : {"render cube -o " + dir.file("out.png"),
+                                  "compare " + exr + " " + exr + " --heatmap " + dir.file("h.png"),
+                                  "compare " + exr + " " + exr + " --heatmap-png " + dir.file("h.exr")}) {
+    const Outcome wrong = rastercheck(args);
+    EXPECT_EQ(wrong.exitCode, 2) << args << "\n" << wrong.output;
+    EXPECT_NE(wrong.output.find("the file is written as"), std::string::npos) << wrong.output;
+  }
+  EXPECT_FALSE(fs::exists(dir.file("out.png")));
+  EXPECT_FALSE(fs::exists(dir.file("h.png")));
+  EXPECT_FALSE(fs::exists(dir.file("h.exr")));
+  EXPECT_EQ(rastercheck("render cube -o " + dir.file("result") + " && " + rc::testing::rastercheckExe() + " render cube -o " +
+                        dir.file("upper.EXR")).exitCode, 0);
 }
 
 // A file its owner made read-only stays as it is. Outputs are written by renaming a temporary
