@@ -117,6 +117,7 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
   command->add_option("--size", s.size, "image size WxH, overriding the scene's (e.g. 1920x1080)");
   command->add_option("--eye", s.eye, "camera position x,y,z, overriding the scene's");
   command->add_option("--target", s.target, "point the camera looks at, x,y,z");
+  command->add_option("--up", s.up, "camera up direction x,y,z, overriding the scene's (needed where the view is along it)");
   command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(1e-3, 179.999));
   command->add_option("--attributes", s.attributes, "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
       ->delimiter(',');
@@ -185,6 +186,7 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings) {
   }
   if (!settings.eye.empty()) o.eye = parseVec3(settings.eye, "--eye");
   if (!settings.target.empty()) o.target = parseVec3(settings.target, "--target");
+  if (!settings.up.empty()) o.up = parseVec3(settings.up, "--up");
   if (settings.fovYDegrees > 0) o.fovYDegrees = settings.fovYDegrees;
   if (!settings.attributes.empty()) o.attributes = settings.attributes;
   Scene scene = rc::loadScene(spec, o);

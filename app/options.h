@@ -18,7 +18,7 @@ struct RenderSettings {
   ReferenceOptions reference;
   int threads = 0;
   std::string size;        // "WxH" override of the scene's image size, or empty
-  std::string eye, target;  // "x,y,z" camera overrides, or empty
+  std::string eye, target, up;  // "x,y,z" camera overrides, or empty
   double fovYDegrees = 0;  // vertical field of view override; 0 keeps the scene's
   std::vector<std::string> attributes;  // narrows the attributes written; empty keeps all
   long long maxTriangles = 20'000'000;  // larger scenes are refused (memory stays bounded)

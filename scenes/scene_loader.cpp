@@ -40,14 +40,15 @@ Scene loadScene(const std::string& spec, const SceneOverrides& o) {
     if (extension == ".json") return loadSceneFile(spec);
     return makeBuiltinScene(spec);
   }();
-  if (o.width || o.height || o.eye || o.target || o.fovYDegrees) {
+  if (o.width || o.height || o.eye || o.target || o.up || o.fovYDegrees) {
     CameraSpec camera = scene.camera.spec();
     if (o.width) camera.width = o.width;
     if (o.height) camera.height = o.height;
     if (o.eye) camera.eye = *o.eye;
     if (o.target) camera.target = *o.target;
+    if (o.up) camera.up = *o.up;
     if (o.fovYDegrees) camera.fovYDegrees = *o.fovYDegrees;
-    scene.camera = Camera(camera, "command line");
+    scene.camera = Camera(camera, "command line (--eye, --target, --up, --fov, --size)");
   }
   if (o.attributes) selectAttributes(scene.mesh, *o.attributes, spec);
   return scene;

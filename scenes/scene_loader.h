@@ -12,7 +12,7 @@ namespace rc {
 
 struct SceneOverrides {
   int width = 0, height = 0;              // image size; 0 keeps the scene's
-  std::optional<glm::dvec3> eye, target;  // camera position and aim
+  std::optional<glm::dvec3> eye, target, up;  // camera position, aim and up direction
   std::optional<double> fovYDegrees;
   std::optional<std::vector<std::string>> attributes;  // narrow the attributes written
 };

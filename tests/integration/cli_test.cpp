@@ -102,6 +102,18 @@ TEST(Cli, OutputInAMissingFolderFailsFirstAndWritesNothing) {
   EXPECT_TRUE(fs::exists(dir / "out" / "r.json"));
 }
 
+// Looking straight down the scene's up direction needs another up: the error says which
+// options made the camera, and --up gives it.
+TEST(Cli, ACameraLookingAlongTheUpDirectionTakesUp) {
+  const CliRun down = run("check cube -q --eye 0,5,0 --target 0,0,0");
+  EXPECT_EQ(down.exitCode, 3) << down.output;
+  EXPECT_NE(down.output.find("--up"), std::string::npos) << down.output;
+  EXPECT_NE(down.output.find("parallel to the view direction"), std::string::npos) << down.output;
+  const CliRun withUp = run("check cube -q --eye 0,5,0 --target 0,0,0 --up 0,0,-1");
+  EXPECT_EQ(withUp.exitCode, 0) << withUp.output;
+  EXPECT_EQ(run("check cube -q --up 1,2").exitCode, 2);
+}
+
 TEST(Cli, AffineCheckExitsOne) {
   const CliRun r = run("check floor --mode affine");
   EXPECT_EQ(r.exitCode, 1) << r.output;
