@@ -86,9 +86,7 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
                       "the unsnapped triangle, decided exactly")
       ->transform(CLI::Validator(
           [](std::string& value) -> std::string {
-            std::string lower = value;
-            for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-            if (lower == "none") {
+            if (lowerCase(value) == "none") {
               value = "0";
               return "";
             }
