@@ -54,17 +54,18 @@ struct ScenePictures {
 
 void writePngs(const std::string& dir, const std::string& stem, const ScenePictures& p, WrittenOutputs& outputs) {
   const std::string base = (fs::path(dir) / stem).string();
-  for (const auto& [image, suffix] : {std::pair{&p.raster, ".raster.png"}, std::pair{&p.reference, ".reference.png"},
-                                      std::pair{&p.heatmap, ".heatmap.png"}}) {
-    outputs.write(base + suffix, [&](const std::string& path) { writePng(*image, path); });
+  // (No structured binding: clang 14 cannot capture one in the lambda.)
+  for (const auto& file : {std::pair{&p.raster, ".raster.png"}, std::pair{&p.reference, ".reference.png"},
+                           std::pair{&p.heatmap, ".heatmap.png"}}) {
+    outputs.write(base + file.second, [&](const std::string& path) { writePng(*file.first, path); });
   }
 }
 
 void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r, WrittenOutputs& outputs) {
   const std::string base = (fs::path(dir) / stem).string();
-  for (const auto& [image, suffix] : {std::pair{&r.raster, ".raster.exr"}, std::pair{&r.reference, ".reference.exr"},
-                                      std::pair{&r.heatmap, ".heatmap.exr"}}) {
-    outputs.write(base + suffix, [&](const std::string& path) { writeExr(*image, path); });
+  for (const auto& file : {std::pair{&r.raster, ".raster.exr"}, std::pair{&r.reference, ".reference.exr"},
+                           std::pair{&r.heatmap, ".heatmap.exr"}}) {
+    outputs.write(base + file.second, [&](const std::string& path) { writeExr(*file.first, path); });
   }
 }
 
