@@ -46,9 +46,9 @@ struct OutputOption {
 // its name ends in another format's extension (an EXR written to out.png). A name without
 // an extension, or a device, takes any format.
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
-// Throws ioError naming the output when its folder is missing, it is a folder itself, or it is
-// a file its owner made read-only (AtomicOutput's checks): called before the work, so that a
-// typo fails now rather than after minutes of rendering.
+// Throws ioError naming the output when its folder is missing or not writable, it is a folder
+// itself, or it is a file its owner made read-only (AtomicOutput's checks): called before the
+// work, so that a typo fails now rather than after minutes of rendering.
 void checkOutputFolders(const std::vector<OutputOption>& outputs);
 
 // The files and folders one command writes, taken back if it stops with an error part way (one

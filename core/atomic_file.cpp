@@ -47,6 +47,10 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
       folder = target.parent_path();
     }
   }
+  // The temporary goes into the folder: one the user may not write fails here, before the work.
+  if (access(folder.c_str(), W_OK) != 0) {
+    throw ioError(finalPath_, "cannot write into folder '" + folder.string() + "': " + std::strerror(errno));
+  }
   tempPath_ = (folder / ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()) +
                          "-" + std::to_string(counter.fetch_add(1))))
                   .string();

@@ -10,8 +10,9 @@ namespace rc {
 
 class AtomicOutput {
  public:
-  // Throws ioError naming the path when its folder is missing, when it is a folder, or when
-  // it is a file the user may not write (the rename would replace a read-only file).
+  // Throws ioError naming the path when its folder is missing or not writable, when it is a
+  // folder, or when it is a file the user may not write (the rename would replace a read-only
+  // file).
   explicit AtomicOutput(std::string finalPath);
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;

@@ -328,10 +328,11 @@ TEST(BadInput, OutputPaths) {
                         dir.file("upper.EXR")).exitCode, 0);
 }
 
-// A file its owner made read-only stays as it is. Outputs are written by renaming a temporary
+// A file its owner made read-only stays as it is: outputs are written by renaming a temporary
 // over the target, which replaces the file whatever its mode, so the write is refused first.
-// Root may write anything: as root, the commands run as nobody (setpriv, from util-linux).
-TEST(BadInput, ReadOnlyOutputFileStaysUntouched) {
+// A folder the user may not write is refused before the work. Root may write anything: as
+// root, the commands run as nobody (setpriv, from util-linux).
+TEST(BadInput, ReadOnlyOutputsAreRefusedFirst) {
   TempDir dir;
   fs::permissions(dir.path(), fs::perms::all);  // the folder is writable by all: only the file is protected
   const std::string target = dir.write("old.exr", "keep");
@@ -349,6 +350,16 @@ TEST(BadInput, ReadOnlyOutputFileStaysUntouched) {
   // The same user writes a new file there: the refusal is the file's, not the folder's.
   const Outcome fresh = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " render cube -o " + dir.file("new.exr"));
   EXPECT_EQ(fresh.exitCode, 0) << fresh.output;
+  // A folder the user may not write (r-x for all) fails before the work: bench would otherwise
+  // time every setting first.
+  fs::create_directories(dir.path() / "closed");
+  fs::permissions(dir.path() / "closed", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                             fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  const std::string closed = (dir.path() / "closed" / "b.json").string();
+  const Outcome bench = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " bench cube --runs 1 -q --json " + closed);
+  EXPECT_EQ(bench.exitCode, 4) << bench.output;
+  EXPECT_NE(bench.output.find("cannot write into folder"), std::string::npos) << bench.output;
+  EXPECT_EQ(bench.output.find("medians of"), std::string::npos) << "fails before timing anything";
 }
 
 TEST(BadInput, Options) {
