@@ -1,11 +1,15 @@
 // Shared CLI options.
 #include "app/options.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include "core/atomic_file.h"
@@ -266,6 +270,9 @@ void WrittenOutputs::makeFolder(const std::string& dir) {
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
   folders_.insert(folders_.end(), missing.begin(), missing.end());
+  if (access(dir.c_str(), W_OK) != 0) {
+    throw ioError(dir, std::string("cannot write into the output folder: ") + std::strerror(errno));
+  }
 }
 
 long long nowNanoseconds() {

@@ -61,7 +61,8 @@ class WrittenOutputs {
   WrittenOutputs& operator=(const WrittenOutputs&) = delete;
   ~WrittenOutputs();
 
-  // Makes the folder and any missing level above it; throws ioError naming it.
+  // Makes the folder and any missing level above it; throws ioError naming it, also when the
+  // user may not write into it.
   void makeFolder(const std::string& dir);
   // Writes `path` through write(path) unless the path is empty (not asked for), and records it.
   template <class Write>

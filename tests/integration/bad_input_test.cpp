@@ -360,6 +360,11 @@ TEST(BadInput, ReadOnlyOutputsAreRefusedFirst) {
   EXPECT_EQ(bench.exitCode, 4) << bench.output;
   EXPECT_NE(bench.output.find("cannot write into folder"), std::string::npos) << bench.output;
   EXPECT_EQ(bench.output.find("medians of"), std::string::npos) << "fails before timing anything";
+  const Outcome out = rc::testing::runCommand(as + rc::testing::rastercheckExe() + " check cube -q --out " +
+                                              (dir.path() / "closed").string());
+  EXPECT_EQ(out.exitCode, 4) << out.output;
+  EXPECT_NE(out.output.find("cannot write into the output folder"), std::string::npos) << out.output;
+  EXPECT_EQ(out.output.find("PASS"), std::string::npos) << "fails before rendering";
 }
 
 TEST(BadInput, Options) {
