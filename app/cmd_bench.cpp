@@ -34,9 +34,10 @@ int runBenchCommand(BenchArgs& args) {
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
   // Scenes given as files are inputs.
-  checkOutputs({{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}}, args.scenes);
+  const std::vector<OutputOption> outputList = {{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}};
+  checkOutputs(outputList, args.scenes);
   if (!args.chart.empty()) checkChartCanBeMade(args.chart);  // a wrong name or no font fails now
-  checkOutputFolders({{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}});
+  checkOutputFolders(outputList);
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
   // Per scene: the reference's builds, each round of traces and frames, then the errors.

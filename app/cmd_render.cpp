@@ -18,8 +18,9 @@ struct RenderArgs {
 
 int runRender(RenderArgs& args) {
   finishRenderSettings(args.settings);
-  checkOutputs({{"-o", args.output, ".exr"}}, {args.scene});  // a scene file is not overwritten by its render
-  checkOutputFolders({{"-o", args.output}});
+  const std::vector<OutputOption> outputList = {{"-o", args.output, ".exr"}};
+  checkOutputs(outputList, {args.scene});  // a scene file is not overwritten by its render
+  checkOutputFolders(outputList);
   const Scene scene = loadScene(args.scene, args.settings);
   setExrThreads(args.settings.threads);
   const long long start = nowNanoseconds();
