@@ -4,9 +4,11 @@
 #include <new>
 
 #include "app/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  rc::removeTemporariesOnSignal();
   CLI::App root{"rastercheck: a CPU rasterizer checked pixel by pixel against an Embree reference"};
   root.require_subcommand(1);
   root.set_version_flag("--version", "rastercheck " RASTERCHECK_VERSION);

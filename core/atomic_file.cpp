@@ -1,6 +1,7 @@
 // AtomicOutput: temporary file in the target folder, then rename.
 #include "core/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -14,6 +15,58 @@
 
 namespace rc {
 namespace fs = std::filesystem;
+
+namespace {
+
+// The temporaries being written, where a signal handler may read them: fixed buffers, since a
+// handler may not allocate or follow a std::string that another thread is freeing. A slot is
+// free (0), being filled (1) or holds a path (2).
+struct TemporarySlot {
+  std::atomic<int> state{0};
+  char path[4096];
+};
+constexpr int kTemporarySlots = 64;
+TemporarySlot gTemporaries[kTemporarySlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots");
+
+int registerTemporary(const std::string& path) {
+  if (path.size() >= sizeof(TemporarySlot::path)) return -1;
+  for (int i = 0; i < kTemporarySlots; ++i) {
+    int expected = 0;
+    if (gTemporaries[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(gTemporaries[i].path, path.c_str(), path.size() + 1);
+      gTemporaries[i].state.store(2);
+      return i;
+    }
+  }
+  return -1;  // more temporaries at once than slots: that one is not removed on a signal
+}
+
+void releaseTemporary(int slot) {
+  if (slot >= 0) gTemporaries[slot].state.store(0);
+}
+
+extern "C" void removeTemporariesAndDie(int signal) {
+  for (TemporarySlot& slot : gTemporaries) {
+    if (slot.state.load() == 2) unlink(slot.path);  // async-signal-safe
+  }
+  // SA_RESETHAND restored the default action: die of the same signal, as the shell expects.
+  raise(signal);
+}
+
+}  // namespace
+
+void removeTemporariesOnSignal() {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    struct sigaction old {};
+    if (sigaction(signal, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = removeTemporariesAndDie;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(signal, &action, nullptr);
+  }
+}
 
 AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPath)) {
   static std::atomic<unsigned> counter{0};
@@ -55,10 +108,12 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
                          "-" + std::to_string(counter.fetch_add(1))))
                   .string();
   renameTo_ = target.string();
+  signalSlot_ = registerTemporary(tempPath_);
 }
 
 AtomicOutput::~AtomicOutput() {
   if (!committed_ && !direct_) std::remove(tempPath_.c_str());
+  releaseTemporary(signalSlot_);
 }
 
 void AtomicOutput::commit() {
@@ -68,6 +123,8 @@ void AtomicOutput::commit() {
     throw ioError(finalPath_, std::string("cannot write: ") + std::strerror(err));
   }
   committed_ = true;
+  releaseTemporary(signalSlot_);
+  signalSlot_ = -1;
 }
 
 void writeTextFile(const std::string& path, const std::string& content) {

@@ -2,6 +2,10 @@
 // folder and rename it into place on success; an abandoned temporary is removed. A target that
 // is a symbolic link keeps it: the file it names is replaced. A device or pipe (/dev/null, a
 // FIFO) is written in place, since a rename would replace the device itself.
+//
+// A process stopped by a signal (Ctrl-C) runs no destructor: removeTemporariesOnSignal makes
+// SIGINT, SIGTERM, SIGHUP and SIGPIPE remove every temporary being written before the process
+// dies of the signal, so an interrupted run leaves no partial file either.
 #pragma once
 
 #include <string>
@@ -29,7 +33,13 @@ class AtomicOutput {
   std::string renameTo_;  // finalPath_, or the file it links to
   bool committed_ = false;
   bool direct_ = false;  // a device or pipe, written in place
+  int signalSlot_ = -1;  // where removeTemporariesOnSignal finds tempPath_, or -1
 };
+
+// Installs the handlers described above (once, from main). A signal the process was started
+// with ignored (nohup, a background job) stays ignored. Files already renamed into place stay:
+// each is whole.
+void removeTemporariesOnSignal();
 
 // Writes `content` to `path` through an AtomicOutput; throws ioError naming the path.
 void writeTextFile(const std::string& path, const std::string& content);

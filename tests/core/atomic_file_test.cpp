@@ -3,13 +3,19 @@
 
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <csignal>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -76,6 +82,59 @@ TEST(AtomicOutput, ADeviceIsWrittenInPlaceNeverReplaced) {
   }  // never committed
   EXPECT_TRUE(fs::is_character_file(null));
   EXPECT_EQ(std::distance(fs::directory_iterator(temp.path()), fs::directory_iterator()), 1);
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Ctrl-C (or kill) runs no destructor: the handlers remove the temporary being written, keep
+// what was already committed, and the process still dies of the signal, as a shell expects.
+TEST(AtomicOutput, ASignalRemovesTheTemporaryBeingWritten) {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    const testing::TempDir temp;
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      removeTemporariesOnSignal();
+      writeTextFile((temp.path() / "done.json").string(), "whole");
+      AtomicOutput out((temp.path() / "result.exr").string());
+      std::ofstream(out.tempPath()) << "partial";
+      std::raise(signal);
+      _exit(0);  // not reached
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << signal << ": the process must die of it";
+    EXPECT_EQ(WTERMSIG(status), signal);
+    EXPECT_EQ(filesIn(temp.path()), std::vector<std::string>{"done.json"}) << "signal " << signal;
+  }
+}
+
+// A signal the process was started with ignored (nohup, a background job) stays ignored.
+TEST(AtomicOutput, ASignalIgnoredAtStartStaysIgnored) {
+  const testing::TempDir temp;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGHUP, SIG_IGN);
+    removeTemporariesOnSignal();
+    {
+      AtomicOutput out((temp.path() / "result.json").string());
+      std::ofstream(out.tempPath()) << "whole";
+      std::raise(SIGHUP);
+      out.commit();
+    }
+    _exit(7);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+  EXPECT_EQ(filesIn(temp.path()), std::vector<std::string>{"result.json"});
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 // The CLI as a user meets it: exit codes, messages, and files written or not written.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -12,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
 #include "core/exr_io.h"
@@ -486,6 +491,43 @@ TEST(Cli, OutputsIntoADeviceLeaveItADevice) {
     EXPECT_EQ(r.exitCode, 0) << command << "\n" << r.output;
     EXPECT_TRUE(fs::is_character_file(null)) << command;
   }
+}
+
+// Ctrl-C while an EXR is being written (hundreds of milliseconds for a 1920x1080 frame): the
+// tool dies of SIGINT, as a shell expects, and leaves no temporary behind.
+TEST(Cli, InterruptedWriteLeavesNoPartialFile) {
+  const rc::testing::TempDir temp;
+  const std::string exe = rc::testing::rastercheckExe();
+  const std::string out = (temp.path() / "blob.exr").string();
+  std::vector<std::string> args = {exe, "render", "blob:tris=1000", "--backend", "raster", "--size", "1920x1080", "-o", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // Wait for the temporary to appear, then interrupt the write.
+  bool seen = false;
+  int status = 0;
+  for (int i = 0; i < 120000 && !seen; ++i) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(temp.path())) {
+      seen = seen || entry.path().filename().string().find(".tmp-") != std::string::npos;
+    }
+    if (!seen) {
+      ASSERT_EQ(waitpid(pid, &status, WNOHANG), 0) << "the render ended before its temporary was seen";
+      usleep(1000);
+    }
+  }
+  ASSERT_TRUE(seen) << "no temporary appeared in 120 s";
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
+  EXPECT_TRUE(fs::is_empty(temp.path())) << "something was left in " << temp.path();
 }
 
 }  // namespace
