@@ -34,10 +34,12 @@ int runBenchCommand(BenchArgs& args) {
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
   // Scenes given as files are inputs.
-  const std::vector<OutputOption> outputList = {{"--json", args.json}, {"--csv", args.csv}, {"--chart", args.chart}};
+  const std::vector<OutputOption> outputList = {
+      {"--json", args.json, "", true}, {"--csv", args.csv, "", true}, {"--chart", args.chart}};
   checkOutputs(outputList, args.scenes);
   if (!args.chart.empty()) checkChartCanBeMade(args.chart);  // a wrong name or no font fails now
   checkOutputFolders(outputList);
+  routeTextAwayFromStandardOutput(outputList);
   std::vector<Scene> scenes;
   for (const std::string& spec : args.scenes) scenes.push_back(loadScene(spec, args.settings));
   // Per scene: the reference's builds, each round of traces and frames, then the errors.
@@ -80,8 +82,8 @@ int runBenchCommand(BenchArgs& args) {
   // leaves no file of a partial set behind.
   const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
   WrittenOutputs outputs;
-  outputs.write(args.json, [&](const std::string& path) { writeTextFile(path, benchJson(rows, machine)); });
-  outputs.write(args.csv, [&](const std::string& path) { writeTextFile(path, benchCsv(rows)); });
+  outputs.write(args.json, [&](const std::string& path) { writeTextOutput(path, benchJson(rows, machine)); });
+  outputs.write(args.csv, [&](const std::string& path) { writeTextOutput(path, benchCsv(rows)); });
   outputs.write(args.chart, [&](const std::string& path) { writeBenchChart(chart, path); });
   outputs.keep();
   return 0;
@@ -96,8 +98,8 @@ void registerBench(CLI::App& root, Action& action) {
   command->add_option("scenes", args->scenes, "scenes as for check; default: blob at about 1k, 100k and 1M triangles");
   command->add_option("--runs", args->runs, "timed runs per measurement (the median is reported)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
-  command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md)");
-  command->add_option("--csv", args->csv, "write the rows as CSV");
+  command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md; '-': standard output, and the table to stderr)");
+  command->add_option("--csv", args->csv, "write the rows as CSV ('-': standard output, and the table to stderr)");
   command->add_option("--chart", args->chart, "write frame time against error as a chart: FILE.svg or FILE.png");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);

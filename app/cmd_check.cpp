@@ -84,7 +84,8 @@ int runCheck(CheckArgs& args) {
   std::vector<std::string> inputs = args.scenes;  // scenes given as files, and the bench results
   if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
-  checkOutputs({{"--json", args.json}}, inputs);
+  const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}};
+  checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
   const bool wantHeatmap = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
@@ -100,7 +101,8 @@ int runCheck(CheckArgs& args) {
   WrittenOutputs outputs;
   if (!args.out.empty()) outputs.makeFolder(args.out);
   if (!args.report.empty()) outputs.makeFolder(args.report);
-  checkOutputFolders({{"--json", args.json}});
+  checkOutputFolders(outputList);
+  routeTextAwayFromStandardOutput(outputList);
 
   std::printf("%-22s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", "scene", "triangles", "size", "verdict", "bary max",
               "bary p999", "depth max", "disagree", "raster ms", "ref ms");
@@ -156,7 +158,7 @@ int runCheck(CheckArgs& args) {
   outputs.write(args.json, [&](const std::string& path) {
     const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
-    writeTextFile(path, j.dump(2) + "\n");
+    writeTextOutput(path, j.dump(2) + "\n");
   });
   outputs.keep();
   return allPass ? 0 : 1;
@@ -172,7 +174,7 @@ void registerCheck(CLI::App& root, Action& action) {
                       "scenes: built-in NAME[:key=value,...], .obj, .gltf/.glb or .json scene file; default: the built-in default set");
   command->add_option("--out", args->out, "write raster, reference and heatmap EXRs and PNGs to this folder");
   command->add_option("--report", args->report, "write a self-contained HTML report (index.html and images) to this folder");
-  command->add_option("--json", args->json, "write a JSON report of every scene here");
+  command->add_option("--json", args->json, "write a JSON report of every scene here ('-': standard output, and the table to stderr)");
   command->add_option("--bench-json", args->benchJson, "with --report: show these bench results (rastercheck bench --json) as a chart");
   command->add_flag("-v,--verbose", args->verbose, "print the full comparison table per scene");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");

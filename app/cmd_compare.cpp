@@ -20,9 +20,10 @@ struct CompareArgs {
 
 int runCompare(const CompareArgs& args) {
   const std::vector<OutputOption> outputList = {
-      {"--heatmap", args.heatmap, ".exr"}, {"--heatmap-png", args.heatmapPng, ".png"}, {"--json", args.json}};
+      {"--heatmap", args.heatmap, ".exr"}, {"--heatmap-png", args.heatmapPng, ".png"}, {"--json", args.json, "", true}};
   checkOutputs(outputList, {args.test, args.reference});
   checkOutputFolders(outputList);
+  routeTextAwayFromStandardOutput(outputList);
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
@@ -34,7 +35,7 @@ int runCompare(const CompareArgs& args) {
   WrittenOutputs outputs;
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
-  outputs.write(args.json, [&](const std::string& path) { writeTextFile(path, reportToJson(report).dump(2) + "\n"); });
+  outputs.write(args.json, [&](const std::string& path) { writeTextOutput(path, reportToJson(report).dump(2) + "\n"); });
   outputs.keep();
   return report.pass ? 0 : 1;
 }
@@ -49,7 +50,7 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("reference", args->reference, "reference image")->required();
   command->add_option("--heatmap", args->heatmap, "write an error heatmap EXR here");
   command->add_option("--heatmap-png", args->heatmapPng, "write the heatmap as a PNG with a legend here");
-  command->add_option("--json", args->json, "write the JSON report here");
+  command->add_option("--json", args->json, "write the JSON report here ('-': standard output, and the table to stderr)");
   addThresholdOptions(command, args->thresholds);
   command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
 }

@@ -9,9 +9,11 @@
 namespace rc::app {
 namespace {
 
+enum class Backend { kRaster, kReference };
+
 struct RenderArgs {
   std::string scene;
-  std::string backend = "raster";
+  Backend backend = Backend::kRaster;
   std::string output;
   RenderSettings settings;
 };
@@ -24,11 +26,11 @@ int runRender(RenderArgs& args) {
   const Scene scene = loadScene(args.scene, args.settings);
   setExrThreads(args.settings.threads);
   const long long start = nowNanoseconds();
-  const Framebuffer fb = args.backend == "raster" ? rasterize(scene, args.settings.raster)
-                                                  : renderReference(scene, args.settings.reference);
+  const bool raster = args.backend == Backend::kRaster;
+  const Framebuffer fb = raster ? rasterize(scene, args.settings.raster) : renderReference(scene, args.settings.reference);
   const double ms = millisecondsSince(start);
   writeExr(fb, args.output);
-  std::printf("%s: %s %dx%d, %zu triangles, %.1f ms -> %s\n", scene.name.c_str(), args.backend.c_str(),
+  std::printf("%s: %s %dx%d, %zu triangles, %.1f ms -> %s\n", scene.name.c_str(), raster ? "raster" : "reference",
               fb.width(), fb.height(), scene.mesh.triangleCount(), ms, args.output.c_str());
   return 0;
 }
@@ -39,9 +41,8 @@ void registerRender(CLI::App& root, Action& action) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* command = root.add_subcommand("render", "render one scene with one backend to an EXR file");
   command->add_option("scene", args->scene, "built-in NAME[:key=value,...], .obj, .gltf/.glb or .json scene file")->required();
-  command->add_option("--backend", args->backend, "raster or reference")
-      ->check(CLI::IsMember({"raster", "reference"}))
-      ->capture_default_str();
+  addChoice<Backend>(command, "--backend", args->backend, {{"raster", Backend::kRaster}, {"reference", Backend::kReference}},
+                     "the rasterizer or the Embree reference");
   command->add_option("-o,--output", args->output, "output EXR file")->required();
   addRenderOptions(command, args->settings);
   command->callback([args, &action] { action = [args] { return runRender(*args); }; });

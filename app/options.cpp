@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
@@ -34,44 +35,12 @@ const CLI::Validator kFiniteNonNegative(
     },
     "FINITE>=0");
 
+}  // namespace
+
 std::string lowerCase(std::string text) {
   for (char& ch : text) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return text;
 }
-
-// An option that takes one of `choices` by name, in any case, into `target`; its default is
-// target's value as given. CLI11's CheckedTransformer also took the enum's number (`--mode 1`
-// for affine) and showed a name->number table in the help.
-template <class Enum>
-void addChoice(CLI::App* command, const std::string& name, Enum& target,
-               const std::vector<std::pair<std::string, Enum>>& choices, const std::string& help) {
-  std::string names, fallback;
-  for (const auto& [choice, value] : choices) {
-    names += (names.empty() ? "" : "|") + choice;
-    if (value == target) fallback = choice;
-  }
-  command
-      ->add_option_function<std::string>(
-          name,
-          [&target, choices](const std::string& text) {
-            for (const auto& [choice, value] : choices) {
-              if (choice == lowerCase(text)) target = value;
-            }
-          },
-          help)
-      ->check(CLI::Validator(
-          [choices, names](std::string& text) -> std::string {
-            for (const auto& choice : choices) {
-              if (choice.first == lowerCase(text)) return "";
-            }
-            return "must be one of " + names + ", got '" + text + "'";
-          },
-          ""))
-      ->type_name(names)
-      ->default_str(fallback);
-}
-
-}  // namespace
 
 void addRenderOptions(CLI::App* command, RenderSettings& s) {
   addChoice<Interpolation>(command, "--mode", s.raster.interpolation,
@@ -220,6 +189,15 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const OutputOption& out = outputs[i];
     if (out.path.empty()) continue;
+    if (out.path == kStandardOutput) {
+      if (!out.text) throw usageError(out.option + ": '-' (standard output) is only for --json and --csv");
+      for (std::size_t j = 0; j < i; ++j) {
+        if (outputs[j].path == kStandardOutput) {
+          throw usageError(outputs[j].option + " and " + out.option + " both name standard output ('-')");
+        }
+      }
+      continue;
+    }
     for (const std::string& input : inputs) {
       if (sameFile(out.path, input)) {
         throw usageError("output " + out.path + " is also an input; refusing to overwrite it");
@@ -246,7 +224,34 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
 
 void checkOutputFolders(const std::vector<OutputOption>& outputs) {
   for (const OutputOption& out : outputs) {
-    if (!out.path.empty()) AtomicOutput probe(out.path);  // throws as a write would; creates nothing
+    if (!out.path.empty() && out.path != kStandardOutput) AtomicOutput probe(out.path);  // throws as a write would
+  }
+}
+
+namespace {
+int gDocumentFd = STDOUT_FILENO;  // where "-" writes: the process's standard output
+}  // namespace
+
+void routeTextAwayFromStandardOutput(const std::vector<OutputOption>& outputs) {
+  const bool taken = std::any_of(outputs.begin(), outputs.end(),
+                                 [](const OutputOption& out) { return out.path == kStandardOutput; });
+  if (!taken || gDocumentFd != STDOUT_FILENO) return;
+  std::fflush(stdout);
+  const int document = dup(STDOUT_FILENO);
+  if (document < 0 || dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+    throw ioError("standard output", std::string("cannot set it aside for the document: ") + std::strerror(errno));
+  }
+  gDocumentFd = document;
+}
+
+void writeTextOutput(const std::string& path, const std::string& content) {
+  if (path != kStandardOutput) return writeTextFile(path, content);
+  std::fflush(stdout);
+  for (std::size_t done = 0; done < content.size();) {
+    const ssize_t n = ::write(gDocumentFd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw ioError("standard output", std::string("cannot write: ") + std::strerror(errno));
+    done += std::size_t(n);
   }
 }
 

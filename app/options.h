@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compare/compare.h"
@@ -25,6 +26,40 @@ struct RenderSettings {
   int maxImageSide = 16384;             // larger images are refused (OpenEXR's limit is 16384)
 };
 
+std::string lowerCase(std::string text);
+
+// An option that takes one of `choices` by name, in any case, into `target`; its default is
+// target's value as given. CLI11's CheckedTransformer also took the enum's number (`--mode 1`
+// for affine) and showed a name->number table in the help.
+template <class Enum>
+void addChoice(CLI::App* command, const std::string& name, Enum& target,
+               const std::vector<std::pair<std::string, Enum>>& choices, const std::string& help) {
+  std::string names, fallback;
+  for (const auto& [choice, value] : choices) {
+    names += (names.empty() ? "" : "|") + choice;
+    if (value == target) fallback = choice;
+  }
+  command
+      ->add_option_function<std::string>(
+          name,
+          [&target, choices](const std::string& text) {
+            for (const auto& [choice, value] : choices) {
+              if (choice == lowerCase(text)) target = value;
+            }
+          },
+          help)
+      ->check(CLI::Validator(
+          [choices, names](std::string& text) -> std::string {
+            for (const auto& choice : choices) {
+              if (choice.first == lowerCase(text)) return "";
+            }
+            return "must be one of " + names + ", got '" + text + "'";
+          },
+          ""))
+      ->type_name(names)
+      ->default_str(fallback);
+}
+
 void addRenderOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
 
@@ -37,15 +72,27 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
 // An output file and the option that names it ("--json"); an empty path: not asked for.
 // `extension` (".exr"): the format written, which a name with another extension contradicts.
+// `text`: a text document (--json, --csv), which "-" sends to standard output.
 struct OutputOption {
   std::string option, path;
   std::string extension = {};
+  bool text = false;
 };
+// "-" as a text output's path: standard output. The document is written there whole, once the
+// command has it, and the command's own text (the table, the statistics) goes to stderr
+// instead, so that stdout carries the document alone (`bench --json - | jq`).
+inline constexpr const char* kStandardOutput = "-";
 // Throws usageError when an output names the same file as one of `inputs`, or as another
 // output (written one after the other, the last would silently replace the first), or when
 // its name ends in another format's extension (an EXR written to out.png). A name without
 // an extension, or a device, takes any format.
+// "-" is refused for any output but a text one, and for two of them.
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
+// When one of the outputs is "-": from here on the command's text goes to stderr. Call it once
+// the outputs are checked, before the command prints anything.
+void routeTextAwayFromStandardOutput(const std::vector<OutputOption>& outputs);
+// Writes a text output: through writeTextFile, or for "-" to standard output; throws ioError.
+void writeTextOutput(const std::string& path, const std::string& content);
 // Throws ioError naming the output when its folder is missing or not writable, it is a folder
 // itself, or it is a file its owner made read-only (AtomicOutput's checks): called before the
 // work, so that a typo fails now rather than after minutes of rendering.
@@ -69,7 +116,7 @@ class WrittenOutputs {
   void write(const std::string& path, Write&& write) {
     if (path.empty()) return;
     write(path);
-    files_.push_back(path);
+    if (path != kStandardOutput) files_.push_back(path);
   }
   void keep() { kept_ = true; }
 

@@ -376,7 +376,8 @@ TEST(BadInput, Options) {
                            "check --subpixel-bits 0", "check --embree-isa neon",
                            // a choice's name only, not the number behind it (CLI11 took `--mode 1` as affine)
                            "check --mode 1", "check --precision 0", "check --raster-isa 3", "check --cull 1",
-                           "compare a.exr b.exr --heatmap-shows 2"}) {
+                           "compare a.exr b.exr --heatmap-shows 2", "render cube --backend 1 -o x.exr",
+                           "render cube --backend gpu -o x.exr"}) {
     const Outcome r = rastercheck(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
   }

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <vector>
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
@@ -528,6 +529,59 @@ TEST(Cli, InterruptedWriteLeavesNoPartialFile) {
   ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
   EXPECT_EQ(WTERMSIG(status), SIGINT);
   EXPECT_TRUE(fs::is_empty(temp.path())) << "something was left in " << temp.path();
+}
+
+// "-" sends a text document (--json, --csv) to standard output, whole, and the command's own
+// text to stderr, so that stdout parses; "-" for an image output, or for two outputs, is refused.
+TEST(Cli, TextOutputsGoToStandardOutputAndTheTableToStderr) {
+  const rc::testing::TempDir temp;
+  const std::string exe = rc::testing::rastercheckExe();
+  const std::string err = (temp.path() / "stderr.txt").string();
+  // stdout alone through the pipe; stderr into a file.
+  const auto split = [&](const std::string& args) {
+    return rc::testing::runCommand("( " + exe + " " + args + " 2>" + err + " )");
+  };
+  const auto stderrText = [&] {
+    std::ifstream in(err);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  };
+  const std::string exr = (temp.path() / "cube.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+
+  const CliRun bench = split("bench cube --runs 1 -q --json -");
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  const nlohmann::json rows = nlohmann::json::parse(bench.output)["rows"];
+  EXPECT_GE(rows.size(), 10u);
+  EXPECT_EQ(rows[0]["scene"], "cube");
+  EXPECT_NE(stderrText().find("perspective-float-8bit *"), std::string::npos) << "the table goes to stderr";
+
+  const CliRun csv = split("bench cube --runs 1 -q --csv -");
+  ASSERT_EQ(csv.exitCode, 0) << csv.output;
+  EXPECT_EQ(csv.output.rfind("scene,triangles,", 0), 0u) << csv.output;
+
+  const CliRun compare = split("compare " + exr + " " + exr + " --json -");
+  ASSERT_EQ(compare.exitCode, 0) << compare.output;
+  EXPECT_EQ(nlohmann::json::parse(compare.output)["verdict"], "pass");
+  EXPECT_NE(stderrText().find("reference " + exr), std::string::npos);
+
+  // A failed gate still writes its report; the verdict goes to stderr.
+  const CliRun gate = split("check cube -q --mode affine --json -");
+  EXPECT_EQ(gate.exitCode, 1) << gate.output;
+  EXPECT_EQ(nlohmann::json::parse(gate.output)["verdict"], "fail");
+  EXPECT_NE(stderrText().find("GATE FAILED"), std::string::npos);
+
+  // An error leaves stdout empty.
+  const CliRun bad = split("check nosuchscene --json -");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_EQ(bad.output, "");
+
+  for (const std::string& args : {std::string("bench cube --json - --csv -"), std::string("render cube -o -"), "compare " + exr + " " + exr + " --heatmap -",
+                                  "compare " + exr + " " + exr + " --heatmap-png -", std::string("bench cube --chart -")}) {
+    const CliRun refused = run(args);
+    EXPECT_EQ(refused.exitCode, 2) << args << "\n" << refused.output;
+    EXPECT_NE(refused.output.find("standard output"), std::string::npos) << refused.output;
+  }
+  EXPECT_FALSE(fs::exists("-")) << "a file named '-' was written";
 }
 
 }  // namespace
