@@ -257,10 +257,8 @@ void writeTextOutput(const std::string& path, const std::string& content) {
 
 WrittenOutputs::~WrittenOutputs() {
   if (kept_) return;
+  batch_.discard();  // before the folders, which must be empty to go
   std::error_code ec;
-  for (auto f = files_.rbegin(); f != files_.rend(); ++f) {
-    if (fs::is_regular_file(fs::symlink_status(*f, ec))) fs::remove(*f, ec);  // never a device or a link
-  }
   for (const std::string& d : folders_) fs::remove(d, ec);  // only if empty
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compare/compare.h"
+#include "core/atomic_file.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 #include "scenes/scene.h"
@@ -98,9 +99,10 @@ void writeTextOutput(const std::string& path, const std::string& content);
 // work, so that a typo fails now rather than after minutes of rendering.
 void checkOutputFolders(const std::vector<OutputOption>& outputs);
 
-// The files and folders one command writes, taken back if it stops with an error part way (one
-// file written, the disk full at the next): it then leaves no folder it made and no file it
-// wrote. A file it replaced is gone either way. keep() once everything is written.
+// The files and folders one command writes, all or none: each file waits as a hidden temporary
+// (an OutputBatch) and keep(), once everything is written, renames them all into place. A
+// command that stops with an error part way (one file written, the disk full at the next)
+// leaves every file as it was, the ones it would have replaced included, and no folder it made.
 class WrittenOutputs {
  public:
   WrittenOutputs() = default;
@@ -111,17 +113,19 @@ class WrittenOutputs {
   // Makes the folder and any missing level above it; throws ioError naming it, also when the
   // user may not write into it.
   void makeFolder(const std::string& dir);
-  // Writes `path` through write(path) unless the path is empty (not asked for), and records it.
+  // Writes `path` through write(path) unless the path is empty (not asked for).
   template <class Write>
   void write(const std::string& path, Write&& write) {
-    if (path.empty()) return;
-    write(path);
-    if (path != kStandardOutput) files_.push_back(path);
+    if (!path.empty()) write(path);
   }
-  void keep() { kept_ = true; }
+  // Renames every file into place; throws ioError naming a file that cannot be.
+  void keep() {
+    batch_.commit();
+    kept_ = true;
+  }
 
  private:
-  std::vector<std::string> files_;
+  OutputBatch batch_;
   std::vector<std::string> folders_;  // the levels makeFolder made, deepest first
   bool kept_ = false;
 };

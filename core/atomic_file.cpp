@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -25,7 +26,7 @@ struct TemporarySlot {
   std::atomic<int> state{0};
   char path[4096];
 };
-constexpr int kTemporarySlots = 64;
+constexpr int kTemporarySlots = 1024;  // an OutputBatch holds its temporaries until it commits
 TemporarySlot gTemporaries[kTemporarySlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots");
 
@@ -53,6 +54,8 @@ extern "C" void removeTemporariesAndDie(int signal) {
   // SA_RESETHAND restored the default action: die of the same signal, as the shell expects.
   raise(signal);
 }
+
+std::atomic<OutputBatch*> gOpenBatch{nullptr};
 
 }  // namespace
 
@@ -117,6 +120,12 @@ AtomicOutput::~AtomicOutput() {
 }
 
 void AtomicOutput::commit() {
+  if (OutputBatch* batch = gOpenBatch.load(); batch && !direct_) {
+    batch->adopt({tempPath_, renameTo_, finalPath_, signalSlot_});  // the batch owns the temporary now
+    committed_ = true;
+    signalSlot_ = -1;
+    return;
+  }
   if (!direct_ && std::rename(tempPath_.c_str(), renameTo_.c_str()) != 0) {
     int err = errno;
     std::remove(tempPath_.c_str());
@@ -125,6 +134,45 @@ void AtomicOutput::commit() {
   committed_ = true;
   releaseTemporary(signalSlot_);
   signalSlot_ = -1;
+}
+
+OutputBatch::OutputBatch() {
+  OutputBatch* none = nullptr;
+  if (!gOpenBatch.compare_exchange_strong(none, this)) throw std::logic_error("an OutputBatch is already open");
+}
+
+void OutputBatch::adopt(Finished finished) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  finished_.push_back(std::move(finished));
+}
+
+void OutputBatch::commit() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (std::size_t i = 0; i < finished_.size(); ++i) {
+    const Finished& f = finished_[i];
+    if (std::rename(f.temp.c_str(), f.target.c_str()) != 0) {
+      const int err = errno;
+      finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(i));  // in place: keep them
+      throw ioError(f.finalPath, std::string("cannot write: ") + std::strerror(err));
+    }
+    releaseTemporary(f.signalSlot);
+  }
+  finished_.clear();
+  OutputBatch* self = this;
+  gOpenBatch.compare_exchange_strong(self, nullptr);
+}
+
+void OutputBatch::discard() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const Finished& f : finished_) {
+      std::remove(f.temp.c_str());
+      releaseTemporary(f.signalSlot);
+    }
+    finished_.clear();
+  }
+  OutputBatch* self = this;
+  gOpenBatch.compare_exchange_strong(self, nullptr);
 }
 
 void writeTextFile(const std::string& path, const std::string& content) {

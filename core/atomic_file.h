@@ -8,7 +8,9 @@
 // dies of the signal, so an interrupted run leaves no partial file either.
 #pragma once
 
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace rc {
 
@@ -25,6 +27,7 @@ class AtomicOutput {
   const std::string& tempPath() const { return tempPath_; }
   const std::string& finalPath() const { return finalPath_; }
   // Renames the temporary over the final path (nothing for a device); throws ioError on failure.
+  // While an OutputBatch is open the temporary stays, and the batch renames it.
   void commit();
 
  private:
@@ -34,6 +37,37 @@ class AtomicOutput {
   bool committed_ = false;
   bool direct_ = false;  // a device or pipe, written in place
   int signalSlot_ = -1;  // where removeTemporariesOnSignal finds tempPath_, or -1
+};
+
+// While an OutputBatch is open, AtomicOutput::commit() leaves each finished temporary where it
+// is, and the batch's commit() renames them all into place, in the order they were finished. A
+// batch closed without commit() removes them: a command that writes many files and fails part
+// way (the disk full at the tenth) leaves every file as it was before it ran, the ones it would
+// have replaced included. A device is still written in place, at once. One batch is open at a
+// time; commit() and discard() close it, and outputs after that are renamed at once.
+class OutputBatch {
+ public:
+  OutputBatch();
+  ~OutputBatch() { discard(); }
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+
+  // Renames every finished temporary into place; throws ioError naming the output whose rename
+  // failed, and then discards the ones after it (those before it are in place).
+  void commit();
+  // Removes every temporary not yet renamed.
+  void discard();
+
+ private:
+  friend class AtomicOutput;
+  struct Finished {
+    std::string temp, target, finalPath;
+    int signalSlot;
+  };
+  void adopt(Finished finished);
+
+  std::mutex mutex_;
+  std::vector<Finished> finished_;
 };
 
 // Installs the handlers described above (once, from main). A signal the process was started

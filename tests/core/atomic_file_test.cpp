@@ -114,6 +114,51 @@ TEST(AtomicOutput, ASignalRemovesTheTemporaryBeingWritten) {
   }
 }
 
+// Within a batch nothing is in place until it commits; a batch discarded leaves every file as
+// it was, and a signal removes the finished temporaries the batch holds too.
+TEST(OutputBatch, RenamesEverythingAtCommitAndNothingOtherwise) {
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  std::ofstream(dir / "a.json") << "old";
+  {
+    OutputBatch batch;
+    writeTextFile((dir / "a.json").string(), "new");
+    writeTextFile((dir / "b.json").string(), "new");
+    EXPECT_EQ(readText(dir / "a.json"), "old") << "in place before the commit";
+    EXPECT_FALSE(fs::exists(dir / "b.json"));
+    EXPECT_EQ(filesIn(dir).size(), 3u) << "a.json and two temporaries";
+  }  // discarded
+  EXPECT_EQ(filesIn(dir), std::vector<std::string>{"a.json"});
+  EXPECT_EQ(readText(dir / "a.json"), "old");
+  {
+    OutputBatch batch;
+    writeTextFile((dir / "a.json").string(), "new");
+    writeTextFile((dir / "b.json").string(), "new");
+    batch.commit();
+    EXPECT_EQ(readText(dir / "a.json"), "new");
+    EXPECT_EQ(readText(dir / "b.json"), "new");
+    writeTextFile((dir / "c.json").string(), "at once");  // the commit closed the batch
+    EXPECT_EQ(readText(dir / "c.json"), "at once");
+  }
+  EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"a.json", "b.json", "c.json"}));
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    removeTemporariesOnSignal();
+    OutputBatch batch;
+    writeTextFile((dir / "a.json").string(), "interrupted");
+    writeTextFile((dir / "d.json").string(), "interrupted");
+    std::raise(SIGTERM);
+    _exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"a.json", "b.json", "c.json"}));
+  EXPECT_EQ(readText(dir / "a.json"), "new");
+}
+
 // A signal the process was started with ignored (nohup, a background job) stays ignored.
 TEST(AtomicOutput, ASignalIgnoredAtStartStaysIgnored) {
   const testing::TempDir temp;

@@ -59,12 +59,14 @@ TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
   EXPECT_EQ(j["scenes"].size(), 2u);
 }
 
-// check writes a scene's files as it goes; when it stops with an error part way, it takes back
-// what it wrote and the folders it made, and a bad scene or bench file makes no folder at all.
+// check's files are renamed into place together once all are written; when it stops with an
+// error part way, every file is as it was (a previous run's too) and the folders it made are
+// gone, and a bad scene or bench file makes no folder at all.
 TEST(Cli, CheckThatFailsPartWayLeavesNothingItWrote) {
   const rc::testing::TempDir temp;
   const fs::path& dir = temp.path();
   fs::create_directories(dir / "out" / "floor.heatmap.png");  // the second scene's last image cannot be written
+  std::ofstream(dir / "out" / "cube.raster.exr") << "a previous run's";
   const CliRun r = run("check cube floor -q --out " + (dir / "out").string() + " --report " + (dir / "rep" / "new").string() +
                        " --json " + (dir / "r.json").string());
   EXPECT_EQ(r.exitCode, 4) << r.output;
@@ -72,7 +74,10 @@ TEST(Cli, CheckThatFailsPartWayLeavesNothingItWrote) {
   std::vector<std::string> left;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) left.push_back(fs::relative(entry.path(), dir).string());
   std::sort(left.begin(), left.end());
-  EXPECT_EQ(left, (std::vector<std::string>{"out", "out/floor.heatmap.png"})) << "cube's files, the report and its folders";
+  EXPECT_EQ(left, (std::vector<std::string>{"out", "out/cube.raster.exr", "out/floor.heatmap.png"}))
+      << "cube's files, the report and its folders";
+  std::ifstream previous(dir / "out" / "cube.raster.exr");
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(previous)), {}), "a previous run's");
   for (const std::string& args : {std::string("check cube nosuch"), "check cube --bench-json " + (dir / "none.json").string()}) {
     const CliRun bad = run(args + " -q --out " + (dir / "o2").string() + " --report " + (dir / "r2").string());
     EXPECT_NE(bad.exitCode, 0) << args;
