@@ -210,9 +210,12 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
       throw usageError(out.option + ": " + out.path + ": the file is written as " + format + "; name it " +
                        out.extension);
     }
-    // Two outputs into one device (/dev/null) are harmless; into one file, the last would win.
     std::error_code ec;
     const fs::file_status status = fs::status(out.path, ec);
+    if (out.extension == ".exr" && (fs::is_fifo(status) || fs::is_socket(status))) {
+      throw usageError(out.option + ": " + out.path + ": an EXR cannot go into a pipe (OpenEXR seeks in its file); name a file");
+    }
+    // Two outputs into one device (/dev/null) are harmless; into one file, the last would win.
     if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status)) continue;
     for (std::size_t j = 0; j < i; ++j) {
       if (!outputs[j].path.empty() && sameFile(out.path, outputs[j].path)) {
