@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <vector>
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
@@ -331,6 +332,21 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     EXPECT_EQ(avx2, perspectiveMax);
   }
   EXPECT_EQ(defaults, 1);
+  // The table's throughput columns are the row's: triangles and pixels over the median frame.
+  for (const auto& row : rows) {
+    const double seconds = row["raster_ms"].get<double>() * 1e-3;
+    EXPECT_NEAR(row["triangles_per_second"].get<double>(), row["triangles"].get<double>() / seconds, 1e-6);
+    EXPECT_NEAR(row["pixels_per_second"].get<double>(), row["width"].get<double>() * row["height"].get<double>() / seconds, 1e-3);
+    if (!row["default"].get<bool>()) continue;
+    const std::size_t at = r.output.find("perspective-float-8bit *");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    std::istringstream line(r.output.substr(at, r.output.find('\n', at) - at));
+    std::string setting, star, median, spread;
+    double mtri = 0, mpix = 0;
+    line >> setting >> star >> median >> spread >> mtri >> mpix;
+    EXPECT_NEAR(mtri, row["triangles_per_second"].get<double>() * 1e-6, 0.006 * mtri) << r.output;
+    EXPECT_NEAR(mpix, row["pixels_per_second"].get<double>() * 1e-6, 0.5) << r.output;
+  }
   EXPECT_GT(affine, 100 * perspective) << "affine must show as far less accurate";
   EXPECT_LE(dbl, perspective);
   std::ifstream csv(dir / "b.csv");
