@@ -84,8 +84,8 @@ int runBenchCommand(BenchArgs& args) {
   // leaves no file of a partial set behind.
   const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
   WrittenOutputs outputs;
-  outputs.write(args.json, [&](const std::string& path) { writeTextOutput(path, benchJson(rows, machine)); });
-  outputs.write(args.csv, [&](const std::string& path) { writeTextOutput(path, benchCsv(rows)); });
+  outputs.writeText(args.json, benchJson(rows, machine));
+  outputs.writeText(args.csv, benchCsv(rows));
   outputs.write(args.chart, [&](const std::string& path) { writeBenchChart(chart, path); });
   outputs.keep();
   return 0;

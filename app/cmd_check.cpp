@@ -155,11 +155,11 @@ int runCheck(CheckArgs& args) {
       writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
     });
   }
-  outputs.write(args.json, [&](const std::string& path) {
+  if (!args.json.empty()) {
     const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
-    writeTextOutput(path, j.dump(2) + "\n");
-  });
+    outputs.writeText(args.json, j.dump(2) + "\n");
+  }
   outputs.keep();
   return allPass ? 0 : 1;
 }

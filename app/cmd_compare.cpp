@@ -35,7 +35,7 @@ int runCompare(const CompareArgs& args) {
   WrittenOutputs outputs;
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
-  outputs.write(args.json, [&](const std::string& path) { writeTextOutput(path, reportToJson(report).dump(2) + "\n"); });
+  outputs.writeText(args.json, reportToJson(report).dump(2) + "\n");
   outputs.keep();
   return report.pass ? 0 : 1;
 }

@@ -247,11 +247,20 @@ void routeTextAwayFromStandardOutput(const std::vector<OutputOption>& outputs) {
   gDocumentFd = document;
 }
 
-void writeTextOutput(const std::string& path, const std::string& content) {
-  if (path != kStandardOutput) return writeTextFile(path, content);
+void WrittenOutputs::writeText(const std::string& path, const std::string& content) {
+  if (path == kStandardOutput) {
+    standardOutput_ = content;  // checkOutputs allows one
+  } else if (!path.empty()) {
+    writeTextFile(path, content);
+  }
+}
+
+void WrittenOutputs::keep() {
+  batch_.commit();
+  kept_ = true;
   std::fflush(stdout);
-  for (std::size_t done = 0; done < content.size();) {
-    const ssize_t n = ::write(gDocumentFd, content.data() + done, content.size() - done);
+  for (std::size_t done = 0; done < standardOutput_.size();) {
+    const ssize_t n = ::write(gDocumentFd, standardOutput_.data() + done, standardOutput_.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) throw ioError("standard output", std::string("cannot write: ") + std::strerror(errno));
     done += std::size_t(n);

@@ -92,8 +92,7 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
 // When one of the outputs is "-": from here on the command's text goes to stderr. Call it once
 // the outputs are checked, before the command prints anything.
 void routeTextAwayFromStandardOutput(const std::vector<OutputOption>& outputs);
-// Writes a text output: through writeTextFile, or for "-" to standard output; throws ioError.
-void writeTextOutput(const std::string& path, const std::string& content);
+
 // Throws ioError naming the output when its folder is missing or not writable, it is a folder
 // itself, or it is a file its owner made read-only (AtomicOutput's checks): called before the
 // work, so that a typo fails now rather than after minutes of rendering.
@@ -118,14 +117,16 @@ class WrittenOutputs {
   void write(const std::string& path, Write&& write) {
     if (!path.empty()) write(path);
   }
-  // Renames every file into place; throws ioError naming a file that cannot be.
-  void keep() {
-    batch_.commit();
-    kept_ = true;
-  }
+  // Writes a text document to `path`, or for "-" to standard output, which keep() does last,
+  // once every file is in place.
+  void writeText(const std::string& path, const std::string& content);
+  // Renames every file into place, then writes the standard output's document; throws ioError
+  // naming a file that cannot be written.
+  void keep();
 
  private:
   OutputBatch batch_;
+  std::string standardOutput_;  // the document for "-", if any
   std::vector<std::string> folders_;  // the levels makeFolder made, deepest first
   bool kept_ = false;
 };
