@@ -79,8 +79,8 @@ struct OutputOption {
   std::string extension = {};
   bool text = false;
 };
-// "-" as a text output's path: standard output. The document is written there whole, once the
-// command has it, and the command's own text (the table, the statistics) goes to stderr
+// "-" as a text output's path: standard output. The document is written there whole, at the
+// end (WrittenOutputs::keep), and the command's own text (the table, the statistics) goes to stderr
 // instead, so that stdout carries the document alone (`bench --json - | jq`).
 inline constexpr const char* kStandardOutput = "-";
 // Throws usageError when an output names the same file as one of `inputs`, or as another
