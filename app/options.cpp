@@ -268,10 +268,7 @@ void WrittenOutputs::keep() {
 }
 
 WrittenOutputs::~WrittenOutputs() {
-  if (kept_) return;
-  batch_.discard();  // before the folders, which must be empty to go
-  std::error_code ec;
-  for (const std::string& d : folders_) fs::remove(d, ec);  // only if empty
+  if (!kept_) batch_.discard();  // the temporaries, then the folders made, where empty
 }
 
 void WrittenOutputs::makeFolder(const std::string& dir) {
@@ -284,7 +281,7 @@ void WrittenOutputs::makeFolder(const std::string& dir) {
   ec.clear();
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw ioError(dir, "cannot create the output folder" + (ec ? ": " + ec.message() : ""));
-  folders_.insert(folders_.end(), missing.begin(), missing.end());
+  for (const std::string& level : missing) batch_.addFolder(level);  // deepest first
   if (access(dir.c_str(), W_OK) != 0) {
     throw ioError(dir, std::string("cannot write into the output folder: ") + std::strerror(errno));
   }

@@ -125,9 +125,8 @@ class WrittenOutputs {
   void keep();
 
  private:
-  OutputBatch batch_;
+  OutputBatch batch_;  // also holds the folder levels makeFolder made
   std::string standardOutput_;  // the document for "-", if any
-  std::vector<std::string> folders_;  // the levels makeFolder made, deepest first
   bool kept_ = false;
 };
 

@@ -21,7 +21,8 @@ namespace {
 
 // The temporaries being written, where a signal handler may read them: fixed buffers, since a
 // handler may not allocate or follow a std::string that another thread is freeing. A slot is
-// free (0), being filled (1) or holds a path (2).
+// free (0), being filled (1), or holds a file's path (2) or the path of a folder made for the
+// outputs (3).
 struct TemporarySlot {
   std::atomic<int> state{0};
   char path[4096];
@@ -30,13 +31,15 @@ constexpr int kTemporarySlots = 1024;  // an OutputBatch holds its temporaries u
 TemporarySlot gTemporaries[kTemporarySlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots");
 
-int registerTemporary(const std::string& path) {
+constexpr int kFileSlot = 2, kFolderSlot = 3;
+
+int registerTemporary(const std::string& path, int kind = kFileSlot) {
   if (path.size() >= sizeof(TemporarySlot::path)) return -1;
   for (int i = 0; i < kTemporarySlots; ++i) {
     int expected = 0;
     if (gTemporaries[i].state.compare_exchange_strong(expected, 1)) {
       std::memcpy(gTemporaries[i].path, path.c_str(), path.size() + 1);
-      gTemporaries[i].state.store(2);
+      gTemporaries[i].state.store(kind);
       return i;
     }
   }
@@ -49,7 +52,14 @@ void releaseTemporary(int slot) {
 
 extern "C" void removeTemporariesAndDie(int signal) {
   for (TemporarySlot& slot : gTemporaries) {
-    if (slot.state.load() == 2) unlink(slot.path);  // async-signal-safe
+    if (slot.state.load() == kFileSlot) unlink(slot.path);  // async-signal-safe
+  }
+  // Then the folders, emptied: a level goes once the levels below it have (a few passes, since
+  // the slots need not hold them deepest first); rmdir leaves a folder that is not empty.
+  for (int pass = 0; pass < 8; ++pass) {
+    for (TemporarySlot& slot : gTemporaries) {
+      if (slot.state.load() == kFolderSlot) rmdir(slot.path);
+    }
   }
   // SA_RESETHAND restored the default action: die of the same signal, as the shell expects.
   raise(signal);
@@ -146,6 +156,11 @@ void OutputBatch::adopt(Finished finished) {
   finished_.push_back(std::move(finished));
 }
 
+void OutputBatch::addFolder(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  folders_.push_back({path, registerTemporary(path, kFolderSlot)});
+}
+
 void OutputBatch::commit() {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (std::size_t i = 0; i < finished_.size(); ++i) {
@@ -158,6 +173,8 @@ void OutputBatch::commit() {
     releaseTemporary(f.signalSlot);
   }
   finished_.clear();
+  for (const auto& folder : folders_) releaseTemporary(folder.second);
+  folders_.clear();
   OutputBatch* self = this;
   gOpenBatch.compare_exchange_strong(self, nullptr);
 }
@@ -170,6 +187,12 @@ void OutputBatch::discard() {
       releaseTemporary(f.signalSlot);
     }
     finished_.clear();
+    std::error_code ec;
+    for (const auto& folder : folders_) {
+      fs::remove(folder.first, ec);  // only if empty
+      releaseTemporary(folder.second);
+    }
+    folders_.clear();
   }
   OutputBatch* self = this;
   gOpenBatch.compare_exchange_strong(self, nullptr);

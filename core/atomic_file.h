@@ -4,12 +4,14 @@
 // FIFO) is written in place, since a rename would replace the device itself.
 //
 // A process stopped by a signal (Ctrl-C) runs no destructor: removeTemporariesOnSignal makes
-// SIGINT, SIGTERM, SIGHUP and SIGPIPE remove every temporary being written before the process
-// dies of the signal, so an interrupted run leaves no partial file either.
+// SIGINT, SIGTERM, SIGHUP and SIGPIPE remove every temporary being written (and an open
+// OutputBatch's, and the folders made for it) before the process dies of the signal, so an
+// interrupted run leaves no partial file either.
 #pragma once
 
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rc {
@@ -55,8 +57,11 @@ class OutputBatch {
   // Renames every finished temporary into place; throws ioError naming the output whose rename
   // failed, and then discards the ones after it (those before it are in place).
   void commit();
-  // Removes every temporary not yet renamed.
+  // Removes every temporary not yet renamed, then the folders added, where empty.
   void discard();
+  // A folder made for the outputs (add the deepest level first): discard() and a signal remove
+  // it when empty; commit() keeps it.
+  void addFolder(const std::string& path);
 
  private:
   friend class AtomicOutput;
@@ -68,6 +73,7 @@ class OutputBatch {
 
   std::mutex mutex_;
   std::vector<Finished> finished_;
+  std::vector<std::pair<std::string, int>> folders_;  // path, signal slot; deepest first
 };
 
 // Installs the handlers described above (once, from main). A signal the process was started

@@ -147,16 +147,47 @@ TEST(OutputBatch, RenamesEverythingAtCommitAndNothingOtherwise) {
   if (child == 0) {
     removeTemporariesOnSignal();
     OutputBatch batch;
+    fs::create_directories(dir / "made" / "deeper");
+    batch.addFolder((dir / "made" / "deeper").string());
+    batch.addFolder((dir / "made").string());
     writeTextFile((dir / "a.json").string(), "interrupted");
-    writeTextFile((dir / "d.json").string(), "interrupted");
+    writeTextFile((dir / "made" / "deeper" / "d.json").string(), "interrupted");
     std::raise(SIGTERM);
     _exit(0);  // not reached
   }
   int status = 0;
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFSIGNALED(status));
-  EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"a.json", "b.json", "c.json"}));
+  EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"a.json", "b.json", "c.json"})) << "the folders made go too";
   EXPECT_EQ(readText(dir / "a.json"), "new");
+}
+
+// The folders made for a batch's outputs go with a discard, where empty, and stay at a commit.
+TEST(OutputBatch, FoldersMadeForItGoWhenItIsDiscarded) {
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  for (bool commit : {false, true}) {
+    OutputBatch batch;
+    fs::create_directories(dir / "made" / "deeper");
+    batch.addFolder((dir / "made" / "deeper").string());
+    batch.addFolder((dir / "made").string());
+    writeTextFile((dir / "made" / "deeper" / "x.json").string(), "x");
+    if (commit) {
+      batch.commit();
+      EXPECT_EQ(readText(dir / "made" / "deeper" / "x.json"), "x");
+    } else {
+      batch.discard();
+      EXPECT_FALSE(fs::exists(dir / "made"));
+    }
+  }
+  // A folder that is not empty stays.
+  fs::create_directories(dir / "kept");
+  std::ofstream(dir / "kept" / "theirs.txt") << "theirs";
+  {
+    OutputBatch batch;
+    batch.addFolder((dir / "kept").string());
+  }
+  EXPECT_EQ(readText(dir / "kept" / "theirs.txt"), "theirs");
 }
 
 // A signal the process was started with ignored (nohup, a background job) stays ignored.
