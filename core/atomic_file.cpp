@@ -166,9 +166,9 @@ void OutputBatch::commit() {
   for (std::size_t i = 0; i < finished_.size(); ++i) {
     const Finished& f = finished_[i];
     if (std::rename(f.temp.c_str(), f.target.c_str()) != 0) {
-      const int err = errno;
-      finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(i));  // in place: keep them
-      throw ioError(f.finalPath, std::string("cannot write: ") + std::strerror(err));
+      const Error error = ioError(f.finalPath, std::string("cannot write: ") + std::strerror(errno));
+      finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(i));  // in place: keep them (f moves)
+      throw error;
     }
     releaseTemporary(f.signalSlot);
   }

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "app/options.h"
@@ -51,6 +52,26 @@ TEST(WrittenOutputs, StandardOutputGetsTheDocumentOnlyOnceEveryFileIsInPlace) {
   }
   EXPECT_EQ(::testing::internal::GetCapturedStdout(), "");
   EXPECT_TRUE(fs::is_directory(late));
+
+  // Failing at the second file: the first is in place, and the error names the second.
+  const std::string first = (temp.path() / "first.json").string();
+  const std::string second = (temp.path() / "second.json").string();
+  {
+    WrittenOutputs outputs;
+    outputs.writeText(first, "{}\n");
+    outputs.writeText(second, "{}\n");
+    fs::create_directories(fs::path(second) / "in the way");
+    try {
+      outputs.keep();
+      ADD_FAILURE() << "keep() must fail at " << second;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("second.json"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::exists(first));
+  EXPECT_EQ(std::distance(fs::directory_iterator(second), fs::directory_iterator()), 1) << "only the folder in the way";
+  EXPECT_EQ(std::distance(fs::directory_iterator(temp.path()), fs::directory_iterator()), 4)
+      << "report.json, late.json, first.json, second.json: no temporary left";
 }
 
 }  // namespace
