@@ -175,8 +175,7 @@ void OutputBatch::commit() {
   finished_.clear();
   for (const auto& folder : folders_) releaseTemporary(folder.second);
   folders_.clear();
-  OutputBatch* self = this;
-  gOpenBatch.compare_exchange_strong(self, nullptr);
+  close();
 }
 
 void OutputBatch::discard() {
@@ -194,8 +193,12 @@ void OutputBatch::discard() {
     }
     folders_.clear();
   }
+  close();
+}
+
+void OutputBatch::close() {
   OutputBatch* self = this;
-  gOpenBatch.compare_exchange_strong(self, nullptr);
+  gOpenBatch.compare_exchange_strong(self, nullptr);  // later outputs are renamed at once
 }
 
 void writeTextFile(const std::string& path, const std::string& content) {

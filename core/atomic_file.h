@@ -70,6 +70,7 @@ class OutputBatch {
     int signalSlot;
   };
   void adopt(Finished finished);
+  void close();  // no longer the open batch
 
   std::mutex mutex_;
   std::vector<Finished> finished_;
