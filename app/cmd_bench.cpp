@@ -33,6 +33,8 @@ int runBenchCommand(BenchArgs& args) {
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
+  takeStandardOutputByName(args.json);
+  takeStandardOutputByName(args.csv);
   // Scenes given as files are inputs.
   const std::vector<OutputOption> outputList = {
       {"--json", args.json, "", true}, {"--csv", args.csv, "", true}, {"--chart", args.chart}};

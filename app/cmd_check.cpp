@@ -84,6 +84,7 @@ int runCheck(CheckArgs& args) {
   std::vector<std::string> inputs = args.scenes;  // scenes given as files, and the bench results
   if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
+  takeStandardOutputByName(args.json);
   const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}};
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);

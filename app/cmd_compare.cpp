@@ -18,7 +18,8 @@ struct CompareArgs {
   Thresholds thresholds;
 };
 
-int runCompare(const CompareArgs& args) {
+int runCompare(CompareArgs& args) {
+  takeStandardOutputByName(args.json);
   const std::vector<OutputOption> outputList = {
       {"--heatmap", args.heatmap, ".exr"}, {"--heatmap-png", args.heatmapPng, ".png"}, {"--json", args.json, "", true}};
   checkOutputs(outputList, {args.test, args.reference});

@@ -1,6 +1,7 @@
 // Shared CLI options.
 #include "app/options.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -183,7 +184,20 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ea && !eb && pa == pb;
 }
 
+// Whether `path` names what standard output is, where that is a file or a pipe (not a
+// terminal or another device).
+bool namesStandardOutput(const std::string& path) {
+  struct stat out {}, named {};
+  if (fstat(STDOUT_FILENO, &out) != 0 || stat(path.c_str(), &named) != 0) return false;
+  if (!S_ISREG(out.st_mode) && !S_ISFIFO(out.st_mode) && !S_ISSOCK(out.st_mode)) return false;
+  return out.st_dev == named.st_dev && out.st_ino == named.st_ino;
+}
+
 }  // namespace
+
+void takeStandardOutputByName(std::string& path) {
+  if (!path.empty() && path != kStandardOutput && namesStandardOutput(path)) path = kStandardOutput;
+}
 
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -197,6 +211,10 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
         }
       }
       continue;
+    }
+    if (!out.text && namesStandardOutput(out.path)) {
+      throw usageError(out.option + ": " + out.path +
+                       " is standard output, where the command's text goes too; name a file");
     }
     for (const std::string& input : inputs) {
       if (sameFile(out.path, input)) {

@@ -83,11 +83,18 @@ struct OutputOption {
 // end (WrittenOutputs::keep), and the command's own text (the table, the statistics) goes to stderr
 // instead, so that stdout carries the document alone (`bench --json - | jq`).
 inline constexpr const char* kStandardOutput = "-";
+// A text output named by a path to the file or pipe that standard output already is
+// (/dev/stdout, /proc/self/fd/1, or the file's own name with `> file` or `>> file`) becomes "-":
+// written there whole, at the end, with the table on stderr, instead of renamed over the file
+// (which would drop what the shell appends to) or mixed with the table in the pipe. A terminal
+// or another device is left as named.
+void takeStandardOutputByName(std::string& path);
 // Throws usageError when an output names the same file as one of `inputs`, or as another
 // output (written one after the other, the last would silently replace the first), or when
 // its name ends in another format's extension (an EXR written to out.png). A name without
 // an extension, or a device, takes any format.
-// "-" is refused for any output but a text one, and for two of them.
+// "-" is refused for any output but a text one, and for two of them; so is an image output that
+// names the file or pipe standard output is, where the command's text goes too.
 void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<std::string>& inputs);
 // When one of the outputs is "-": from here on the command's text goes to stderr. Call it once
 // the outputs are checked, before the command prints anything.

@@ -610,4 +610,52 @@ TEST(Cli, TextOutputsGoToStandardOutputAndTheTableToStderr) {
   EXPECT_FALSE(fs::exists("-")) << "a file named '-' was written";
 }
 
+// A text output named by a path to what stdout already is (/dev/stdout, or the file's own
+// name) is taken as "-": `--json /dev/stdout >> log` appends to the log instead of replacing it,
+// and through a pipe the document comes alone. An image output named so is refused.
+TEST(Cli, StandardOutputNamedByAPathIsTakenAsDash) {
+  const rc::testing::TempDir temp;
+  const std::string exe = rc::testing::rastercheckExe();
+  const std::string exr = (temp.path() / "cube.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  const auto text = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  };
+
+  const fs::path log = temp.path() / "log.txt";
+  std::ofstream(log) << "an earlier line\n";
+  const CliRun appended =
+      rc::testing::runCommand("( " + exe + " compare " + exr + " " + exr + " --json /dev/stdout >> " + log.string() + " )");
+  ASSERT_EQ(appended.exitCode, 0) << appended.output;
+  const std::string logged = text(log);
+  ASSERT_EQ(logged.rfind("an earlier line\n{", 0), 0u) << logged;
+  EXPECT_EQ(nlohmann::json::parse(logged.substr(logged.find('{')))["verdict"], "pass");
+  EXPECT_NE(appended.output.find("verdict: PASS"), std::string::npos) << "the table goes to stderr";
+
+  // The file's own name, with `>`.
+  const fs::path report = temp.path() / "report.json";
+  const CliRun named =
+      rc::testing::runCommand("( " + exe + " check cube --json " + report.string() + " > " + report.string() + " )");
+  ASSERT_EQ(named.exitCode, 0) << named.output;
+  EXPECT_EQ(nlohmann::json::parse(text(report))["verdict"], "pass");
+  EXPECT_NE(named.output.find("all pass"), std::string::npos) << named.output;
+
+  // Through a pipe: the document alone.
+  const std::string err = (temp.path() / "stderr.txt").string();
+  const CliRun piped = rc::testing::runCommand("( " + exe + " bench cube --runs 1 -q --csv /dev/stdout 2>" + err + " ) | cat");
+  ASSERT_EQ(piped.exitCode, 0) << piped.output;
+  EXPECT_EQ(piped.output.rfind("scene,triangles,", 0), 0u) << piped.output;
+  EXPECT_EQ(piped.output.find("perspective-float-8bit *"), std::string::npos) << piped.output;
+
+  for (const std::string& args : {std::string("bench cube --runs 1 --chart /dev/stdout"),
+                                  "compare " + exr + " " + exr + " --heatmap-png /dev/stdout"}) {
+    const fs::path into = temp.path() / "into.txt";
+    const CliRun refused = rc::testing::runCommand("( " + exe + " " + args + " > " + into.string() + " )");
+    EXPECT_EQ(refused.exitCode, 2) << args << "\n" << refused.output;
+    EXPECT_NE(refused.output.find("is standard output"), std::string::npos) << refused.output;
+    EXPECT_EQ(text(into), "") << args;
+  }
+}
+
 }  // namespace
