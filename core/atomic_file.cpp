@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -27,39 +28,69 @@ struct TemporarySlot {
   std::atomic<int> state{0};
   char path[4096];
 };
-constexpr int kTemporarySlots = 1024;  // an OutputBatch holds its temporaries until it commits
-TemporarySlot gTemporaries[kTemporarySlots];
-static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots");
+// The slots come in chunks. An OutputBatch holds its temporaries until it commits, so a check of
+// many scenes holds many at once: when every slot is taken, registering takes another chunk,
+// allocated there (never in the handler) and linked where the handler follows it. Chunks are
+// kept for the process's life.
+constexpr int kSlotsPerChunk = 256;
+struct SlotChunk {
+  TemporarySlot slots[kSlotsPerChunk];
+  std::atomic<SlotChunk*> next{nullptr};
+};
+SlotChunk gFirstChunk;
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<SlotChunk*>::is_always_lock_free,
+              "the signal handler reads the slots");
 
 constexpr int kFileSlot = 2, kFolderSlot = 3;
 
+// -1 for a path too long for a slot: that one is not removed on a signal.
 int registerTemporary(const std::string& path, int kind = kFileSlot) {
   if (path.size() >= sizeof(TemporarySlot::path)) return -1;
-  for (int i = 0; i < kTemporarySlots; ++i) {
-    int expected = 0;
-    if (gTemporaries[i].state.compare_exchange_strong(expected, 1)) {
-      std::memcpy(gTemporaries[i].path, path.c_str(), path.size() + 1);
-      gTemporaries[i].state.store(kind);
-      return i;
+  SlotChunk* chunk = &gFirstChunk;
+  for (int base = 0;; base += kSlotsPerChunk) {
+    for (int i = 0; i < kSlotsPerChunk; ++i) {
+      TemporarySlot& slot = chunk->slots[i];
+      int expected = 0;
+      if (slot.state.compare_exchange_strong(expected, 1)) {
+        std::memcpy(slot.path, path.c_str(), path.size() + 1);
+        slot.state.store(kind);
+        return base + i;
+      }
     }
+    SlotChunk* next = chunk->next.load();
+    if (next == nullptr) {
+      auto fresh = std::make_unique<SlotChunk>();
+      if (chunk->next.compare_exchange_strong(next, fresh.get())) next = fresh.release();  // else another thread's
+    }
+    chunk = next;
   }
-  return -1;  // more temporaries at once than slots: that one is not removed on a signal
 }
 
 void releaseTemporary(int slot) {
-  if (slot >= 0) gTemporaries[slot].state.store(0);
+  if (slot < 0) return;
+  SlotChunk* chunk = &gFirstChunk;
+  for (int k = slot / kSlotsPerChunk; k > 0; --k) chunk = chunk->next.load();
+  chunk->slots[slot % kSlotsPerChunk].state.store(0);
+}
+
+// Calls fn(slot) for every slot of every chunk; async-signal-safe when fn is.
+template <typename Fn>
+void forEachSlot(Fn&& fn) {
+  for (SlotChunk* chunk = &gFirstChunk; chunk != nullptr; chunk = chunk->next.load()) {
+    for (TemporarySlot& slot : chunk->slots) fn(slot);
+  }
 }
 
 extern "C" void removeTemporariesAndDie(int signal) {
-  for (TemporarySlot& slot : gTemporaries) {
+  forEachSlot([](TemporarySlot& slot) {
     if (slot.state.load() == kFileSlot) unlink(slot.path);  // async-signal-safe
-  }
+  });
   // Then the folders, emptied: a level goes once the levels below it have (a few passes, since
   // the slots need not hold them deepest first); rmdir leaves a folder that is not empty.
   for (int pass = 0; pass < 8; ++pass) {
-    for (TemporarySlot& slot : gTemporaries) {
+    forEachSlot([](TemporarySlot& slot) {
       if (slot.state.load() == kFolderSlot) rmdir(slot.path);
-    }
+    });
   }
   // SA_RESETHAND restored the default action: die of the same signal, as the shell expects.
   raise(signal);

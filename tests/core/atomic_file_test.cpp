@@ -114,6 +114,28 @@ TEST(AtomicOutput, ASignalRemovesTheTemporaryBeingWritten) {
   }
 }
 
+// A batch holds its temporaries until it commits, and a check of many scenes with --out and
+// --report holds more than a thousand: a signal removes every one.
+TEST(OutputBatch, ASignalRemovesEveryTemporaryItHoldsHoweverMany) {
+  const testing::TempDir temp;
+  constexpr int kFiles = 1500;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    removeTemporariesOnSignal();
+    OutputBatch batch;
+    for (int i = 0; i < kFiles; ++i) writeTextFile((temp.path() / ("f" + std::to_string(i) + ".json")).string(), "x");
+    if (filesIn(temp.path()).size() != std::size_t(kFiles)) _exit(3);  // every temporary written
+    std::raise(SIGTERM);
+    _exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_EQ(filesIn(temp.path()).size(), 0u);
+}
+
 // Within a batch nothing is in place until it commits; a batch discarded leaves every file as
 // it was, and a signal removes the finished temporaries the batch holds too.
 TEST(OutputBatch, RenamesEverythingAtCommitAndNothingOtherwise) {
