@@ -106,6 +106,8 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   return settings;
 }
 
+std::string timingPhrase(int runs) { return runs == 1 ? "one run" : "medians of " + std::to_string(runs) + " runs"; }
+
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;

@@ -56,6 +56,9 @@ struct BenchRow {
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
 };
 
+// How the times were taken, for the table and the chart: "medians of 7 runs", or "one run".
+std::string timingPhrase(int runs);
+
 // `step` is called before each measured unit of work (progress).
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
                                const std::function<void(const std::string&)>& step);

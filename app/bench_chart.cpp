@@ -337,7 +337,7 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
     std::snprintf(conditions, sizeof conditions,
                   "%s: %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
                   head->scene.c_str(), withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
-                  head->runs > 0 ? (", medians of " + std::to_string(head->runs) + " runs").c_str() : "",
+                  head->runs > 0 ? (", " + timingPhrase(head->runs)).c_str() : "",
                   head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
                   head->referenceBuildMs);
     d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});

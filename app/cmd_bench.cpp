@@ -50,10 +50,10 @@ int runBenchCommand(BenchArgs& args) {
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
 
-  std::printf("medians of %d runs, the reference's trace and the settings timed in turn; "
+  std::printf("%s, the reference's trace and the settings timed in turn; "
               "raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
               "rasterizer kernels: %s unless the setting names another%s%s; reference: Embree %s%s\n",
-              args.runs, resolveThreadCount(args.settings.threads),
+              timingPhrase(args.runs).c_str(), resolveThreadCount(args.settings.threads),
               kernelIsaName(resolveKernelIsa(args.settings.raster.isa)),
               args.settings.raster.diagnostics ? "" : "; every setting without the diagnostic channels",
               args.settings.raster.culling == Culling::kNone ? "; every setting drawing back faces (--cull none)" : "",

@@ -106,7 +106,7 @@ TEST(Cli, OutputInAMissingFolderFailsFirstAndWritesNothing) {
   EXPECT_EQ(render.exitCode, 4) << render.output;
   const CliRun bench = run("bench cube --runs 1 -q --json " + (dir / "b.json").string() + " --csv " + missing);
   EXPECT_EQ(bench.exitCode, 4) << bench.output;
-  EXPECT_EQ(bench.output.find("medians of"), std::string::npos) << "fails before timing anything";
+  EXPECT_EQ(bench.output.find("timed in turn"), std::string::npos) << "fails before timing anything";
   EXPECT_FALSE(fs::exists(dir / "b.json"));
   // check's --json may go into its --out folder, which check makes.
   const CliRun check = run("check cube -q --out " + (dir / "out").string() + " --json " + (dir / "out" / "r.json").string());
@@ -456,7 +456,10 @@ TEST(Cli, BenchTimesTheSettingsRoundByRound) {
                            "[4/5] cube: round 3 of 3", "[5/5] cube: errors"}) {
     EXPECT_NE(r.output.find(step), std::string::npos) << step << "\n" << r.output;
   }
-  EXPECT_NE(r.output.find("the settings timed in turn"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("medians of 3 runs, the reference's trace and the settings timed in turn"), std::string::npos) << r.output;
+  const CliRun once = run("bench cube --runs 1 -q");
+  ASSERT_EQ(once.exitCode, 0) << once.output;
+  EXPECT_EQ(once.output.rfind("one run, the reference's trace and the settings timed in turn", 0), 0u) << once.output;
 }
 
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
