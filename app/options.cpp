@@ -275,7 +275,6 @@ void WrittenOutputs::writeText(const std::string& path, const std::string& conte
 
 void WrittenOutputs::keep() {
   batch_.commit();
-  kept_ = true;
   std::fflush(stdout);
   for (std::size_t done = 0; done < standardOutput_.size();) {
     const ssize_t n = ::write(gDocumentFd, standardOutput_.data() + done, standardOutput_.size() - done);
@@ -283,10 +282,6 @@ void WrittenOutputs::keep() {
     if (n <= 0) throw ioError("standard output", std::string("cannot write: ") + std::strerror(errno));
     done += std::size_t(n);
   }
-}
-
-WrittenOutputs::~WrittenOutputs() {
-  if (!kept_) batch_.discard();  // the temporaries, then the folders made, where empty
 }
 
 void WrittenOutputs::makeFolder(const std::string& dir) {

@@ -114,7 +114,6 @@ class WrittenOutputs {
   WrittenOutputs() = default;
   WrittenOutputs(const WrittenOutputs&) = delete;
   WrittenOutputs& operator=(const WrittenOutputs&) = delete;
-  ~WrittenOutputs();
 
   // Makes the folder and any missing level above it; throws ioError naming it, also when the
   // user may not write into it.
@@ -132,9 +131,10 @@ class WrittenOutputs {
   void keep();
 
  private:
-  OutputBatch batch_;  // also holds the folder levels makeFolder made
+  // Also holds the folder levels makeFolder made. Destroyed without keep(), it discards them
+  // all: the temporaries, then the folders made, where empty.
+  OutputBatch batch_;
   std::string standardOutput_;  // the document for "-", if any
-  bool kept_ = false;
 };
 
 // Milliseconds elapsed since `start` (steady clock).
