@@ -218,6 +218,13 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.referenceBuildMs = median(build);
       row.referenceTraceMs = median(trace);
       row.speedup = row.referenceTraceMs / row.rasterMs;
+      row.rasterRuns = times;
+      row.traceRuns = trace;
+      for (int r = 0; r < runs; ++r) {  // round r timed trace[r] and times[r]
+        const double ratio = trace[std::size_t(r)] / times[std::size_t(r)];
+        row.speedupMin = r == 0 ? ratio : std::min(row.speedupMin, ratio);
+        row.speedupMax = r == 0 ? ratio : std::max(row.speedupMax, ratio);
+      }
       row.speedupWithBuild = (row.referenceBuildMs + row.referenceTraceMs) / row.rasterMs;
       row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
       row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
@@ -273,11 +280,14 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"raster_isa", r.rasterIsa}, {"diagnostics", r.diagnostics}, {"cull", r.cull},
                           {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
                           {"reference_trace_ms", r.referenceTraceMs},
-                          {"speedup", r.speedup}, {"speedup_with_build", r.speedupWithBuild},
+                          {"speedup", r.speedup}, {"speedup_min", r.speedupMin}, {"speedup_max", r.speedupMax},
+                          {"speedup_with_build", r.speedupWithBuild},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
                           {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
                           {"disagreement_fraction", r.disagreementFraction}};
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
+    row["raster_ms_runs"] = r.rasterRuns;
+    row["reference_trace_ms_runs"] = r.traceRuns;
     list.push_back(row);
   }
   const nlohmann::json about = {{"cpu", machine.cpu},
@@ -325,6 +335,10 @@ BenchResults readBenchJson(const std::string& path) {
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
       r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
       r.speedup = j.at("speedup").get<double>();
+      r.speedupMin = j.value("speedup_min", 0.0);
+      r.speedupMax = j.value("speedup_max", 0.0);
+      r.rasterRuns = j.value("raster_ms_runs", std::vector<double>{});
+      r.traceRuns = j.value("reference_trace_ms_runs", std::vector<double>{});
       r.baryMax = j.at("bary_max_error").get<double>();
       r.baryP999 = j.at("bary_p999_error").get<double>();
       r.disagreementFraction = j.at("disagreement_fraction").get<double>();
@@ -367,20 +381,20 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
-         "reference_isa,raster_isa,store_floor_ms,diagnostics,cull\n";
+         "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max\n";
   char line[768];
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
                   "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g\n",
                   r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
-                  r.diagnostics ? "true" : "false", r.cull.c_str());
+                  r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax);
     out << line;
   }
   return out.str();

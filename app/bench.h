@@ -51,6 +51,12 @@ struct BenchRow {
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs
   double speedup = 0;             // referenceTraceMs / rasterMs
+  // The least and the greatest of the rounds' own ratios: each round's trace over the same
+  // round's frame, taken within about a second of each other. How far a slow spell moved the
+  // ratio; with an odd number of runs they bracket `speedup`. 0 where not measured (older reports).
+  double speedupMin = 0, speedupMax = 0;
+  // Every timed frame and trace, in round order (round r: rasterRuns[r], traceRuns[r]).
+  std::vector<double> rasterRuns, traceRuns;
   double speedupWithBuild = 0;    // (build + trace) / raster
   double trianglesPerSecond = 0, pixelsPerSecond = 0;
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;

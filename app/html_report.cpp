@@ -118,19 +118,21 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
   writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows, bench.machine ? &*bench.machine : nullptr));
   html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
        << "<p>From bench results: medians over runs in one process; floor ms is the time to write the setting's "
-       << "output planes alone (memory's floor under raster ms). The chart sets each scene's frame times against "
+       << "output planes alone (memory's floor under raster ms); per round is the least and greatest of each "
+       << "round's reference trace over the same round's frame. The chart sets each scene's frame times against "
        << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
        << "dashed lines and ringed dots mark each panel's Pareto front.</p>\n";
   if (bench.machine) html << "<p class=\"settings\">Measured on: " << escapeMarkup(describe(*bench.machine)) << "</p>\n";
   html << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
-       << "<th>speedup</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
+       << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
   for (const BenchRow& r : rows) {
     html << "<tr><td>" << escapeMarkup(r.scene) << "</td><td>" << escapeMarkup(r.setting) << (r.isDefault ? " (default)" : "")
          << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>"
          << (r.storeFloorMs > 0 ? formatNumber(r.storeFloorMs) : std::string("-")) << "</td><td>"
          << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
-         << formatNumber(r.baryMax) << "</td><td>" << formatNumber(r.baryP999) << "</td><td>"
+         << (r.speedupMax > 0 ? formatNumber(r.speedupMin) + " to " + formatNumber(r.speedupMax) : std::string("-"))
+         << "</td><td>" << formatNumber(r.baryMax) << "</td><td>" << formatNumber(r.baryP999) << "</td><td>"
          << formatNumber(r.disagreementFraction) << "</td></tr>\n";
   }
   html << "</table>\n</section>\n";

@@ -266,7 +266,7 @@ TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
 TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   const rc::testing::TempDir temp;  // removed at the end of the test
   const fs::path& dir = temp.path();
-  const CliRun r = run("bench cube --runs 2 -q --json " + (dir / "b.json").string() + " --csv " +
+  const CliRun r = run("bench cube --runs 3 -q --json " + (dir / "b.json").string() + " --csv " +
                        (dir / "b.csv").string() + " --chart " + (dir / "b.svg").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
@@ -287,6 +287,27 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     // Unpinned, the reference runs Embree's fastest mode on this CPU.
     EXPECT_EQ(row["reference_isa"], rc::fastestEmbreeIsa());
     EXPECT_NEAR(row["speedup"].get<double>(), row["reference_trace_ms"].get<double>() / row["raster_ms"].get<double>(), 1e-9);
+    // Every timed frame and trace, round by round: the medians come from them, and the
+    // per-round ratios pair the frame and the trace of the same round. With an odd number of
+    // runs the ratios' least and greatest bracket the ratio of the medians.
+    const std::vector<double> frames = row.at("raster_ms_runs"), traces = row.at("reference_trace_ms_runs");
+    ASSERT_EQ(frames.size(), 3u);
+    ASSERT_EQ(traces.size(), 3u);
+    const auto middle = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[1];
+    };
+    EXPECT_EQ(middle(frames), row["raster_ms"].get<double>());
+    EXPECT_EQ(middle(traces), row["reference_trace_ms"].get<double>());
+    double least = traces[0] / frames[0], greatest = least;
+    for (std::size_t k = 1; k < 3; ++k) {
+      least = std::min(least, traces[k] / frames[k]);
+      greatest = std::max(greatest, traces[k] / frames[k]);
+    }
+    EXPECT_EQ(row["speedup_min"].get<double>(), least);
+    EXPECT_EQ(row["speedup_max"].get<double>(), greatest);
+    EXPECT_LE(least, row["speedup"].get<double>());
+    EXPECT_GE(greatest, row["speedup"].get<double>());
     // The spread brackets the median; every stage took time, and none more than the slowest frame.
     EXPECT_LE(row["raster_ms_min"].get<double>(), row["raster_ms"].get<double>());
     EXPECT_GE(row["raster_ms_max"].get<double>(), row["raster_ms"].get<double>());
@@ -353,8 +374,11 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   std::string line;
   int lines = 0;
   while (std::getline(csv, line)) {
+    if (lines == 0) {
+      EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max")) << line;
+    }
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 29) << "30 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 31) << "32 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");

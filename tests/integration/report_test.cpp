@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "compare/report.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
@@ -87,6 +88,12 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   EXPECT_NE(html.find("Measured on: " + cpu + ", "), std::string::npos);
   // The bench rows carry their memory floor, read back from the JSON (older reports show "-").
   EXPECT_NE(html.find("<th>floor ms</th>"), std::string::npos);
+  // And the least and greatest of the rounds' own speed-ups (one run: both that round's).
+  EXPECT_NE(html.find("<th>per round</th>"), std::string::npos);
+  const nlohmann::json& first = bench["rows"][0];
+  EXPECT_NE(html.find("<td>" + rc::formatNumber(first["speedup_min"].get<double>()) + " to " +
+                      rc::formatNumber(first["speedup_max"].get<double>()) + "</td>"),
+            std::string::npos);
   EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
 }
 
