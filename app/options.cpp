@@ -2,6 +2,7 @@
 #include "app/options.h"
 
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -193,6 +194,20 @@ bool namesStandardOutput(const std::string& path) {
   return out.st_dev == named.st_dev && out.st_ino == named.st_ino;
 }
 
+// Whether `path` is a terminal: the one this process's standard streams are on, or /dev/tty
+// (the controlling terminal). Decided from the device numbers alone: opening a device to ask
+// it can have effects of its own.
+bool namesTerminal(const std::string& path) {
+  struct stat named {};
+  if (stat(path.c_str(), &named) != 0 || !S_ISCHR(named.st_mode)) return false;
+  if (named.st_rdev == makedev(5, 0)) return true;  // /dev/tty
+  for (const int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) {
+    struct stat stream {};
+    if (isatty(fd) && fstat(fd, &stream) == 0 && stream.st_rdev == named.st_rdev) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void takeStandardOutputByName(std::string& path) {
@@ -215,6 +230,9 @@ void checkOutputs(const std::vector<OutputOption>& outputs, const std::vector<st
     if (!out.text && namesStandardOutput(out.path)) {
       throw usageError(out.option + ": " + out.path +
                        " is standard output, where the command's text goes too; name a file");
+    }
+    if (!out.text && namesTerminal(out.path)) {
+      throw usageError(out.option + ": " + out.path + " is a terminal, which an image would only garble; name a file");
     }
     for (const std::string& input : inputs) {
       if (sameFile(out.path, input)) {

@@ -685,4 +685,27 @@ TEST(Cli, StandardOutputNamedByAPathIsTakenAsDash) {
   }
 }
 
+// An image into a terminal would garble it: refused, as any wrong output is, before anything
+// runs. /dev/null, a device too, still takes one.
+TEST(Cli, ImageIntoATerminalIsRefused) {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "util-linux script is absent: no terminal test";
+  if (std::system("script -qec true /dev/null > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "no pseudo-terminal can be created here (/dev/pts): the terminal was not tested";
+  }
+  const rc::testing::TempDir temp;
+  const std::string exe = rc::testing::rastercheckExe();
+  const std::string exr = (temp.path() / "cube.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  for (const std::string& args : {"compare " + exr + " " + exr + " --heatmap-png /dev/stdout",
+                                  "compare " + exr + " " + exr + " --heatmap /dev/tty", std::string("render cube -o /dev/tty")}) {
+    const std::string tty =
+        rc::testing::runCommand("script -qec '" + exe + " " + args + "; echo exit=$?' /dev/null").output;
+    EXPECT_NE(tty.find("is a terminal, which an image would only garble; name a file"), std::string::npos) << args << "\n" << tty;
+    EXPECT_NE(tty.find("exit=2"), std::string::npos) << args << "\n" << tty;
+    EXPECT_EQ(tty.find("\x89PNG"), std::string::npos) << args;
+  }
+  const CliRun toNull = run("compare " + exr + " " + exr + " --heatmap-png /dev/null");
+  EXPECT_EQ(toNull.exitCode, 0) << toNull.output;
+}
+
 }  // namespace
