@@ -1,4 +1,5 @@
 // `rastercheck bench [SCENE...]`: speed against error for every rasterizer setting.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -60,20 +61,22 @@ int runBenchCommand(BenchArgs& args) {
               args.settings.reference.isa.c_str(),
               args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)");
   std::printf("machine: %s\n", describe(machine).c_str());
-  std::printf("%-20s %-31s %9s %15s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", "scene", "setting",
+  int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
+  for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
+  std::printf("%-*s %-31s %9s %15s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
               "raster ms", "(min..max)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
               "(per round)", "w/build", "bary max", "bary p999", "disagree", "exr ms");
   for (const BenchRow& r : rows) {
     char spread[32], exr[16] = "-";
-    // One decimal, as the median has two, unless that would round the spread of a short frame away.
-    const char* format = r.rasterMsMin < 1 ? "(%.2g..%.2g)" : "(%.1f..%.1f)";
+    // One decimal, as the median has two; under a millisecond three, as the median has.
+    const char* format = r.rasterMsMin < 1 ? "(%.3f..%.3f)" : "(%.1f..%.1f)";
     std::snprintf(spread, sizeof spread, format, r.rasterMsMin, r.rasterMsMax);
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.1f", r.exrWriteMs);
     char rounds[48];
     std::snprintf(rounds, sizeof rounds, "(%.2f..%.2f)", r.speedupMin, r.speedupMax);
     char median[32];
     std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
-    std::printf("%-20s %-31s %9s %15s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", r.scene.c_str(),
+    std::printf("%-*s %-31s %9s %15s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth, r.scene.c_str(),
                 (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread,
                 formatNumber(r.trianglesPerSecond * 1e-6).c_str(), r.pixelsPerSecond * 1e-6, r.storeFloorMs, r.referenceBuildMs,
                 r.referenceTraceMs, r.speedup, rounds, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),

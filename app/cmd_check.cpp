@@ -1,5 +1,6 @@
 // `rastercheck check [SCENE...]`: both paths, compare, one row per scene; exit 0 only if every
 // scene passes the gate. --out writes EXRs and PNGs, --report an HTML report, --json a report.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -105,7 +106,9 @@ int runCheck(CheckArgs& args) {
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
 
-  std::printf("%-22s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", "scene", "triangles", "size", "verdict", "bary max",
+  int nameWidth = 22;  // wider for a long path, so that the columns stay aligned
+  for (const Scene& scene : scenes) nameWidth = std::max(nameWidth, int(scene.name.size()));
+  std::printf("%-*s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", nameWidth, "scene", "triangles", "size", "verdict", "bary max",
               "bary p999", "depth max", "disagree", "raster ms", "ref ms");
   nlohmann::json rows = nlohmann::json::array();
   std::vector<ReportScene> reportScenes;
@@ -117,7 +120,7 @@ int runCheck(CheckArgs& args) {
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
     const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);
-    std::printf("%-22s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", scene.name.c_str(), r.triangles, size.c_str(),
+    std::printf("%-*s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", nameWidth, scene.name.c_str(), r.triangles, size.c_str(),
                 r.report.pass ? "PASS" : "FAIL", formatNumber(bary.max).c_str(), formatNumber(bary.p999).c_str(),
                 formatNumber(depth.max).c_str(), formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs,
                 r.referenceMs);

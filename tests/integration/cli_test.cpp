@@ -685,6 +685,41 @@ TEST(Cli, StandardOutputNamedByAPathIsTakenAsDash) {
   }
 }
 
+// A scene named by a long path widens the scene column instead of pushing its row's figures out
+// of line with the header (check and bench).
+TEST(Cli, TablesStayAlignedForLongSceneNames) {
+  const rc::testing::TempDir temp;
+  const fs::path obj = temp.path() / "a-mesh-whose-path-is-longer-than-the-column.obj";
+  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  for (const std::string& command : {std::string("check"), std::string("bench --runs 1 -q")}) {
+    const CliRun r = run(command + " " + obj.string() + " cube");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::istringstream lines(r.output);
+    std::string header;
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("scene ", 0) == 0) header = line;
+      if (line.rfind(obj.string() + " ", 0) == 0 || line.rfind("cube ", 0) == 0) rows.push_back(line);
+    }
+    ASSERT_FALSE(header.empty()) << r.output;
+    ASSERT_GE(rows.size(), 2u) << r.output;
+    // The second column ends at the same place in every line: its header right-aligned over
+    // the triangle counts (check), or left-aligned over the settings (bench).
+    const bool check = command == "check";
+    const std::size_t column = check ? header.find("triangles") + std::string("triangles").size() : header.find("setting");
+    for (const std::string& row : rows) {
+      if (check) {
+        EXPECT_NE(row[column - 1], ' ') << row << "\n" << header;
+        EXPECT_EQ(row[column], ' ') << row << "\n" << header;
+      } else {
+        EXPECT_EQ(row[column - 1], ' ') << row << "\n" << header;
+        EXPECT_TRUE(row.compare(column, 11, "perspective") == 0 || row.compare(column, 6, "affine") == 0)
+            << row << "\n" << header;
+      }
+    }
+  }
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
