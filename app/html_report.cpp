@@ -55,6 +55,7 @@ h1 { margin-bottom: 4px; }
 .images { display: flex; gap: 12px; flex-wrap: wrap; }
 figure { margin: 0; }
 figure img { max-width: 420px; border: 1px solid #ccc; display: block; }
+figure.chart img { max-width: 100%; width: 1000px; }
 figcaption { font-size: 0.85em; color: #555; }
 table { border-collapse: collapse; margin-top: 10px; font-size: 0.9em; }
 th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: right; }
@@ -123,7 +124,8 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
        << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
        << "dashed lines and ringed dots mark each panel's Pareto front.</p>\n";
   if (bench.machine) html << "<p class=\"settings\">Measured on: " << escapeMarkup(describe(*bench.machine)) << "</p>\n";
-  html << "<figure><img src=\"bench.svg\" alt=\"frame time against error\"></figure>\n<table>\n"
+  html << "<figure class=\"chart\"><a href=\"bench.svg\"><img src=\"bench.svg\" alt=\"frame time against error\"></a>"
+       << "<figcaption>click the chart to open it at full size</figcaption></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
        << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
   for (const BenchRow& r : rows) {

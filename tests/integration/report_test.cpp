@@ -88,6 +88,8 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   EXPECT_NE(html.find("Measured on: " + cpu + ", "), std::string::npos);
   // The bench rows carry their memory floor, read back from the JSON (older reports show "-").
   EXPECT_NE(html.find("<th>floor ms</th>"), std::string::npos);
+  // The chart is drawn across the page and opens at full size.
+  EXPECT_NE(html.find("<a href=\"bench.svg\"><img src=\"bench.svg\""), std::string::npos);
   // And the least and greatest of the rounds' own speed-ups (one run: both that round's).
   EXPECT_NE(html.find("<th>per round</th>"), std::string::npos);
   const nlohmann::json& first = bench["rows"][0];
