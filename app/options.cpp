@@ -118,6 +118,8 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
   command->add_option("--max-coverage", t.coverage,
                       "gate without edge.dist channels: max fraction of covered pixels covered by one image only")
       ->check(kFiniteNonNegative)->capture_default_str();
+  command->add_flag("--allow-empty", t.allowEmpty,
+                    "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }
 
 void finishRenderSettings(RenderSettings& s) {

@@ -309,6 +309,9 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
 
   // The gate. Every comparison is written !(value <= limit) so that a NaN fails it.
+  if (report.coveredEither == 0 && !thresholds.allowEmpty) {
+    report.reasons.push_back("neither image covers a pixel, so nothing was compared (--allow-empty lets such a pair pass)");
+  }
   for (const FamilyReport& f : report.families) {
     if (f.stats.nanCount + f.stats.infCount > 0) {
       report.reasons.push_back(f.name + ": " + std::to_string(f.stats.nanCount) + " NaN and " +

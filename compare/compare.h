@@ -49,6 +49,9 @@ struct Thresholds {
   double attribute = 1e-4;     // max |a_test - a_ref| / (range of a in the reference)
   double disagreement = 5e-3;  // different-triangle pixels / pixels covered by either image
   double coverage = 1e-3;      // one-side-only pixels / pixels covered by either image
+  // A pair in which neither image covers a pixel compares nothing: it fails the gate (a camera
+  // that misses the mesh) unless this says it may pass.
+  bool allowEmpty = false;
   HeatmapQuantity heatmap = HeatmapQuantity::kError;
 };
 

@@ -59,7 +59,8 @@ nlohmann::json reportToJson(const CompareReport& r) {
                      {"depth", r.thresholds.depth},
                      {"attribute", r.thresholds.attribute},
                      {"disagreement", r.thresholds.disagreement},
-                     {"coverage", r.thresholds.coverage}};
+                     {"coverage", r.thresholds.coverage},
+                     {"allow_empty", r.thresholds.allowEmpty}};
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;

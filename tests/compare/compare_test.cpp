@@ -57,6 +57,26 @@ TEST(Compare, IdenticalImagesHaveZeroErrorAndPass) {
   EXPECT_EQ(r.families.size(), 3u);  // bary, depth, attr.uv
 }
 
+// Two empty images agree everywhere, but the gate saw nothing: that fails unless allowed.
+// One covered pixel is enough to compare.
+TEST(Compare, APairThatCoversNoPixelComparesNothingAndFailsUnlessAllowed) {
+  Framebuffer empty = image();
+  for (std::uint32_t& id : empty.find(channels::kTriangleId)->uints) id = channels::kNoTriangle;
+  const CompareReport r = compareImages(empty, "t.exr", empty, "r.exr", Thresholds{}, nullptr);
+  EXPECT_EQ(r.coveredEither, 0u);
+  EXPECT_FALSE(r.pass);
+  ASSERT_EQ(r.reasons.size(), 1u);
+  EXPECT_EQ(r.reasons[0], "neither image covers a pixel, so nothing was compared (--allow-empty lets such a pair pass)");
+  Thresholds allowing;
+  allowing.allowEmpty = true;
+  EXPECT_TRUE(compareImages(empty, "t.exr", empty, "r.exr", allowing, nullptr).pass);
+  Framebuffer one = empty;
+  idAt(one, 4, 4) = 1;
+  const CompareReport single = compareImages(one, "t.exr", one, "r.exr", Thresholds{}, nullptr);
+  EXPECT_EQ(single.coveredEither, 1u);
+  EXPECT_TRUE(single.pass);
+}
+
 TEST(Compare, OneKnownDifferenceGivesKnownStatistics) {
   Framebuffer test = image();
   at(test, channels::kBary[0], 3, 4) = 0.25f + 0x1p-10f;  // exact in float

@@ -720,6 +720,22 @@ TEST(Cli, TablesStayAlignedForLongSceneNames) {
   }
 }
 
+// A camera that misses the mesh renders two empty images that agree everywhere: the gate
+// fails, saying nothing was compared, unless --allow-empty lets it pass.
+TEST(Cli, ACheckThatSeesNothingFailsUnlessAllowed) {
+  const CliRun missed = run("check cube --eye 0,0,5 --target 0,0,10");
+  EXPECT_EQ(missed.exitCode, 1) << missed.output;
+  EXPECT_NE(missed.output.find("neither image covers a pixel, so nothing was compared"), std::string::npos)
+      << missed.output;
+  const rc::testing::TempDir temp;
+  const std::string json = (temp.path() / "c.json").string();
+  const CliRun allowed = run("check cube --eye 0,0,5 --target 0,0,10 --allow-empty --json " + json);
+  EXPECT_EQ(allowed.exitCode, 0) << allowed.output;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ(report["scenes"][0]["report"]["thresholds"]["allow_empty"], true);
+  EXPECT_EQ(report["scenes"][0]["report"]["pixels"]["covered_either"], 0);
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
