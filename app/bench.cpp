@@ -297,7 +297,7 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                                 {"compiler", machine.compiler},
                                 {"embree", machine.embree},
                                 {"rastercheck", machine.rastercheck}};
-  return nlohmann::json({{"format_version", 1}, {"machine", about}, {"rows", list}}).dump(2) + "\n";
+  return jsonDocument(nlohmann::json({{"format_version", 1}, {"machine", about}, {"rows", list}}));
 }
 
 BenchResults readBenchJson(const std::string& path) {

@@ -162,7 +162,7 @@ int runCheck(CheckArgs& args) {
   if (!args.json.empty()) {
     const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
-    outputs.writeText(args.json, j.dump(2) + "\n");
+    outputs.writeText(args.json, jsonDocument(j));
   }
   outputs.keep();
   return allPass ? 0 : 1;

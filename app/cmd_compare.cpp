@@ -36,7 +36,7 @@ int runCompare(CompareArgs& args) {
   WrittenOutputs outputs;
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
-  outputs.writeText(args.json, reportToJson(report).dump(2) + "\n");
+  outputs.writeText(args.json, jsonDocument(reportToJson(report)));
   outputs.keep();
   return report.pass ? 0 : 1;
 }

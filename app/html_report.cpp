@@ -9,12 +9,13 @@
 #include "app/bench_chart.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
+#include "core/utf8.h"
 
 namespace rc::app {
 
 std::string escapeMarkup(const std::string& text) {
   std::string out;
-  for (char c : text) {
+  for (char c : validUtf8(text)) {
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;

@@ -736,6 +736,29 @@ TEST(Cli, ACheckThatSeesNothingFailsUnlessAllowed) {
   EXPECT_EQ(report["scenes"][0]["report"]["pixels"]["covered_either"], 0);
 }
 
+// A Linux file name may be any bytes; JSON, SVG and HTML must be UTF-8. A scene file whose
+// name is not gets U+FFFD for its bad bytes there, instead of an internal error at the end.
+TEST(Cli, ASceneNamedInBytesThatAreNotUtf8IsReportedWithReplacementCharacters) {
+  const rc::testing::TempDir temp;
+  const fs::path obj = temp.path() / "bad\xFFname.obj";
+  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string json = (temp.path() / "c.json").string(), bench = (temp.path() / "b.json").string(),
+                    svg = (temp.path() / "b.svg").string(), report = (temp.path() / "report").string();
+  const CliRun check = run("check '" + obj.string() + "' -q --json " + json + " --report " + report);
+  ASSERT_EQ(check.exitCode, 0) << check.output;
+  const CliRun benched = run("bench '" + obj.string() + "' --runs 1 -q --json " + bench + " --chart " + svg);
+  ASSERT_EQ(benched.exitCode, 0) << benched.output;
+  const std::string expected = (temp.path() / "bad\xEF\xBF\xBDname.obj").string();
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(json))["scenes"][0]["scene"], expected);
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(bench))["rows"][0]["scene"], expected);
+  for (const std::string& file : {svg, report + "/index.html"}) {
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(text.find("bad\xEF\xBF\xBDname.obj"), std::string::npos) << file;
+    EXPECT_EQ(text.find('\xFF'), std::string::npos) << file;
+  }
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
