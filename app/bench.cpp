@@ -376,26 +376,37 @@ BenchResults readBenchJson(const std::string& path) {
   return results;
 }
 
+namespace {
+
+// A CSV field in quotes, a quote in it doubled (RFC 4180): a file name may hold either.
+std::string csvQuoted(const std::string& field) {
+  std::string out = "\"";
+  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
 std::string benchCsv(const std::vector<BenchRow>& rows) {
   std::ostringstream out;
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
          "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max\n";
-  char line[768];
+  char line[768];  // every field after the scene: numbers and short names
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
     std::snprintf(line, sizeof line,
-                  "\"%s\",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
+                  ",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
                   "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g\n",
-                  r.scene.c_str(), r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
+                  r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
                   r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax);
-    out << line;
+    out << csvQuoted(r.scene) << line;
   }
   return out.str();
 }

@@ -759,6 +759,46 @@ TEST(Cli, ASceneNamedInBytesThatAreNotUtf8IsReportedWithReplacementCharacters) {
   }
 }
 
+// bench --csv: a scene whose path holds a comma and quotes, and is longer than any fixed line
+// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 32 columns.
+TEST(Cli, BenchCsvQuotesAnySceneName) {
+  const rc::testing::TempDir temp;
+  fs::path dir = temp.path();
+  for (int level = 0; level < 4; ++level) dir /= std::string(200, char('a' + level));
+  fs::create_directories(dir);
+  const fs::path obj = dir / "a \"quoted\", name.obj";
+  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string csv = (temp.path() / "b.csv").string();
+  std::string quotedArg;  // the path in single quotes for the shell
+  for (char c : obj.string()) quotedArg += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const CliRun r = run("bench '" + quotedArg + "' --runs 1 -q --csv " + csv);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(csv);
+  std::string header, line;
+  ASSERT_TRUE(std::getline(in, header));
+  ASSERT_TRUE(std::getline(in, line));
+  // Split by RFC 4180.
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  EXPECT_FALSE(quoted) << line;
+  ASSERT_EQ(fields.size(), 32u) << line;
+  EXPECT_EQ(fields[0], obj.string());
+  EXPECT_EQ(fields[1], "1");  // triangles
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
