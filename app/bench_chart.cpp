@@ -111,6 +111,17 @@ std::string shortSettingName(const std::string& setting, const std::string& defa
   return out.empty() ? setting : out;
 }
 
+std::string elideMiddle(const std::string& text, std::size_t keep) {
+  if (text.size() <= keep) return text;
+  const std::string dots = "...";
+  const std::size_t room = keep > dots.size() ? keep - dots.size() : 0;
+  const auto continuation = [&](std::size_t i) { return (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80; };
+  std::size_t head = room / 3, tail = text.size() - (room - head);
+  while (head > 0 && continuation(head)) --head;            // the head ends before a character
+  while (tail < text.size() && continuation(tail)) ++tail;  // the tail starts on one
+  return text.substr(0, head) + dots + text.substr(tail);
+}
+
 }  // namespace chart
 
 namespace {
@@ -335,13 +346,19 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
     const double top = kHeader + kRowHeight * double(s);
     char conditions[512];
     std::snprintf(conditions, sizeof conditions,
-                  "%s: %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
-                  head->scene.c_str(), withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
+                  ": %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
+                  withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
                   head->runs > 0 ? (", " + timingPhrase(head->runs)).c_str() : "",
                   head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
                   head->referenceBuildMs);
+    // A long scene name (a path) loses its middle rather than the conditions their end.
+    std::string name = head->scene;
+    for (std::size_t keep = name.size(); keep > 12 && fonts.width(name + conditions, 13) > kWidth - 40.0;) {
+      keep -= std::max<std::size_t>(1, keep / 10);
+      name = chart::elideMiddle(head->scene, keep);
+    }
     d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});
-    d.items.push_back(Text{20, top + 26, conditions, 13, kInk});
+    d.items.push_back(Text{20, top + 26, name + conditions, 13, kInk});
     double tMin = INFINITY, tMax = 0;
     for (const BenchRow* r : mine) {
       if (r->rasterMs > 0 && std::isfinite(r->rasterMs)) tMin = std::min(tMin, r->rasterMs), tMax = std::max(tMax, r->rasterMs);

@@ -79,5 +79,10 @@ bool crosses(const Segment& segment, const Box& box);
 // "double nosnap"; "default" for the default.
 std::string shortSettingName(const std::string& setting, const std::string& defaultSetting);
 
+// `text` cut to at most `keep` bytes by replacing its middle with "...": the first third and the
+// last two thirds of what is kept (a path's file name is at its end), each cut on a UTF-8
+// character boundary. Text no longer than `keep` comes back unchanged.
+std::string elideMiddle(const std::string& text, std::size_t keep);
+
 }  // namespace chart
 }  // namespace rc::app

@@ -217,6 +217,30 @@ Circles circles(const std::string& svg) {
   return c;
 }
 
+TEST(BenchChart, ALongNameLosesItsMiddleOnCharacterBoundaries) {
+  EXPECT_EQ(chart::elideMiddle("short.obj", 9), "short.obj");
+  EXPECT_EQ(chart::elideMiddle("/a/very/long/path/to/mesh.obj", 15), "/a/v...mesh.obj");
+  EXPECT_EQ(chart::elideMiddle("/a/very/long/path/to/mesh.obj", 15).size(), 15u);
+  // U+00E9 is two bytes: a cut never splits it.
+  EXPECT_EQ(chart::elideMiddle("\xC3\xA9\xC3\xA9\xC3\xA9-long-middle-\xC3\xA9\xC3\xA9\xC3\xA9", 12),
+            "\xC3\xA9...\xC3\xA9\xC3\xA9\xC3\xA9");
+}
+
+// A scene named by a long path keeps its conditions on the chart: the name loses its middle.
+TEST(BenchChart, ALongSceneNameLeavesTheConditionsWhole) {
+  std::vector<BenchRow> rows = craftedRows();
+  const std::string path = "/" + std::string(300, 'x') + "/" + std::string(300, 'y') + "/mesh.obj";
+  for (BenchRow& row : rows) {
+    if (row.scene == rows[0].scene) row.scene = path;
+  }
+  const std::string svg = rc::app::benchChartSvg(rows);
+  EXPECT_EQ(svg.find(std::string(300, 'x')), std::string::npos);
+  const std::size_t line = svg.find("y/mesh.obj: ");
+  ASSERT_NE(line, std::string::npos) << "the name's end, then its conditions";
+  EXPECT_NE(svg.find("...", svg.rfind(">", line)), std::string::npos);
+  EXPECT_NE(svg.find("BVH build", line), std::string::npos);
+}
+
 TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
   const std::string svg = rc::app::benchChartSvg(craftedRows());
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
