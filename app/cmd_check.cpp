@@ -1,6 +1,7 @@
 // `rastercheck check [SCENE...]`: both paths, compare, one row per scene; exit 0 only if every
 // scene passes the gate. --out writes EXRs and PNGs, --report an HTML report, --json a report.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 #include "app/check.h"
 #include "app/commands.h"
 #include "app/html_report.h"
+#include "app/junit.h"
 #include "app/progress.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
@@ -27,7 +29,7 @@ namespace fs = std::filesystem;
 
 struct CheckArgs {
   std::vector<std::string> scenes;
-  std::string out, report, json, benchJson;
+  std::string out, report, json, junit, benchJson;
   bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
@@ -86,7 +88,8 @@ int runCheck(CheckArgs& args) {
   if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
   takeStandardOutputByName(args.json);
-  const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}};
+  takeStandardOutputByName(args.junit);
+  const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}, {"--junit", args.junit, ".xml", true}};
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
   const bool wantHeatmap = !args.out.empty() || !args.report.empty();
@@ -112,11 +115,14 @@ int runCheck(CheckArgs& args) {
               "bary p999", "depth max", "disagree", "raster ms", "ref ms");
   nlohmann::json rows = nlohmann::json::array();
   std::vector<ReportScene> reportScenes;
+  std::vector<JUnitCase> junitCases;
   std::set<std::string> stems;
   bool allPass = true;
   for (const Scene& scene : scenes) {
     progress.step(scene.name + ": rasterizer, reference, compare");
+    const auto started = std::chrono::steady_clock::now();
     const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantHeatmap);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
     const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);
@@ -152,6 +158,11 @@ int runCheck(CheckArgs& args) {
                           {"reference_ms", r.referenceMs},
                           {"report", reportToJson(r.report)}};
     rows.push_back(row);
+    junitCases.push_back({scene.name, seconds, r.report.reasons,
+                          std::to_string(r.triangles) + " triangles, " + size + ": bary max " + formatNumber(bary.max) +
+                              ", p99.9 " + formatNumber(bary.p999) + "; depth max " + formatNumber(depth.max) +
+                              "; disagreement " + formatNumber(r.report.disagreementFraction) + "; raster " +
+                              formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms"});
   }
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
   if (!args.report.empty()) {
@@ -164,6 +175,7 @@ int runCheck(CheckArgs& args) {
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
     outputs.writeText(args.json, jsonDocument(j));
   }
+  if (!args.junit.empty()) outputs.writeText(args.junit, junitXml("rastercheck check", settingsLine(args.settings), junitCases));
   outputs.keep();
   return allPass ? 0 : 1;
 }
@@ -179,6 +191,8 @@ void registerCheck(CLI::App& root, Action& action) {
   command->add_option("--out", args->out, "write raster, reference and heatmap EXRs and PNGs to this folder");
   command->add_option("--report", args->report, "write a self-contained HTML report (index.html and images) to this folder");
   command->add_option("--json", args->json, "write a JSON report of every scene here ('-': standard output, and the table to stderr)");
+  command->add_option("--junit", args->junit,
+                      "write the verdicts as JUnit XML for CI test reports, a test case per scene ('-': standard output)");
   command->add_option("--bench-json", args->benchJson, "with --report: show these bench results (rastercheck bench --json) as a chart");
   command->add_flag("-v,--verbose", args->verbose, "print the full comparison table per scene");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");

@@ -799,6 +799,44 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
   EXPECT_EQ(fields[1], "1");  // triangles
 }
 
+// check --junit: a test case per scene for CI's test reports, a failure with the gate's reasons
+// where the scene failed, names escaped.
+TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
+  const rc::testing::TempDir temp;
+  const auto text = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  };
+  const auto count = [](const std::string& document, const std::string& needle) {
+    int n = 0;
+    for (std::size_t at = document.find(needle); at != std::string::npos; at = document.find(needle, at + 1)) ++n;
+    return n;
+  };
+  const fs::path obj = temp.path() / "a&b<c>.obj";
+  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  const fs::path failing = temp.path() / "failing.xml", passing = temp.path() / "passing.xml";
+  const CliRun affine = run("check cube floor --mode affine -q --junit " + failing.string());
+  EXPECT_EQ(affine.exitCode, 1) << affine.output;
+  const std::string f = text(failing);
+  EXPECT_EQ(f.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"rastercheck check\" tests=\"2\" failures=\"2\"", 0), 0u) << f;
+  EXPECT_EQ(count(f, "<testcase "), 2);
+  EXPECT_EQ(count(f, "<failure "), 2);
+  EXPECT_NE(f.find("<testcase classname=\"rastercheck.check\" name=\"cube\""), std::string::npos) << f;
+  EXPECT_NE(f.find("message=\"bary: error reaches"), std::string::npos) << f;
+  EXPECT_NE(f.find("property name=\"settings\" value=\"rasterizer: affine"), std::string::npos) << f;
+  EXPECT_TRUE(f.ends_with("  </testsuite>\n</testsuites>\n")) << f;
+  const CliRun fine = run("check cube '" + obj.string() + "' -q --junit " + passing.string());
+  EXPECT_EQ(fine.exitCode, 0) << fine.output;
+  const std::string p = text(passing);
+  EXPECT_NE(p.find("tests=\"2\" failures=\"0\""), std::string::npos) << p;
+  EXPECT_EQ(count(p, "<failure"), 0);
+  EXPECT_NE(p.find("a&amp;b&lt;c&gt;.obj"), std::string::npos) << p;
+  EXPECT_EQ(p.find("a&b<c>"), std::string::npos) << p;
+  EXPECT_EQ(count(p, "<system-out>"), 2);
+  // An XML report by any other name is refused before anything runs.
+  EXPECT_EQ(run("check cube --junit " + (temp.path() / "r.json").string()).exitCode, 2);
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {

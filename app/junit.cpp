@@ -1,0 +1,54 @@
+// JUnit XML for the accuracy gate (junit.h).
+#include "app/junit.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "app/html_report.h"
+
+namespace rc::app {
+
+namespace {
+
+std::string seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", s);
+  return text;
+}
+
+}  // namespace
+
+std::string junitXml(const std::string& suite, const std::string& settings, const std::vector<JUnitCase>& cases) {
+  std::size_t failures = 0;
+  double total = 0;
+  for (const JUnitCase& c : cases) {
+    failures += !c.reasons.empty();
+    total += c.seconds;
+  }
+  const std::string counts = " tests=\"" + std::to_string(cases.size()) + "\" failures=\"" + std::to_string(failures) +
+                             "\" errors=\"0\"";
+  std::string classname = suite;  // dotted, as JUnit's class names are
+  for (char& c : classname) c = c == ' ' ? '.' : c;
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites name=\"" << escapeMarkup(suite) << "\"" << counts << " time=\"" << seconds(total) << "\">\n"
+      << "  <testsuite name=\"" << escapeMarkup(suite) << "\"" << counts << " skipped=\"0\" time=\"" << seconds(total)
+      << "\">\n"
+      << "    <properties>\n      <property name=\"settings\" value=\"" << escapeMarkup(settings) << "\"/>\n"
+      << "    </properties>\n";
+  for (const JUnitCase& c : cases) {
+    xml << "    <testcase classname=\"" << escapeMarkup(classname) << "\" name=\"" << escapeMarkup(c.name) << "\" time=\""
+        << seconds(c.seconds) << "\">\n";
+    if (!c.reasons.empty()) {
+      std::string all;
+      for (const std::string& reason : c.reasons) all += reason + "\n";
+      xml << "      <failure type=\"accuracy gate\" message=\"" << escapeMarkup(c.reasons.front()) << "\">"
+          << escapeMarkup(all) << "</failure>\n";
+    }
+    xml << "      <system-out>" << escapeMarkup(c.summary) << "</system-out>\n    </testcase>\n";
+  }
+  xml << "  </testsuite>\n</testsuites>\n";
+  return xml.str();
+}
+
+}  // namespace rc::app
