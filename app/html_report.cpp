@@ -102,7 +102,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
          << " unexplained (the gate allows none).</p>\n";
   }
   html << "<table>\n<tr><th>family</th><th>max</th><th>mean</th><th>rms</th><th>p50</th><th>p99</th><th>p99.9</th>"
-       << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>worst pixel: test / reference</th></tr>\n";
+       << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>largest error at: test / reference</th></tr>\n";
   for (const FamilyReport& f : r.families) {
     const FamilyStats& st = f.stats;
     const std::string worst = formatWorst(st.worst);

@@ -106,7 +106,7 @@ std::string reportToTable(const CompareReport& r) {
     out << line;
   }
   std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %5s %9s %9s  %s\n", "family", "max",
-                "mean", "p99.9", "max ulps", "max/bound", "n+i", "limit", "p99.9/bnd", "worst pixel: test / ref");
+                "mean", "p99.9", "max ulps", "max/bound", "n+i", "limit", "p99.9/bnd", "largest error at: test / ref");
   out << line;
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;
