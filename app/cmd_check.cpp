@@ -159,9 +159,7 @@ int runCheck(CheckArgs& args) {
                           {"report", reportToJson(r.report)}};
     rows.push_back(row);
     junitCases.push_back({scene.name, seconds, r.report.reasons,
-                          std::to_string(r.triangles) + " triangles, " + size + ": bary max " + formatNumber(bary.max) +
-                              ", p99.9 " + formatNumber(bary.p999) + "; depth max " + formatNumber(depth.max) +
-                              "; disagreement " + formatNumber(r.report.disagreementFraction) + "; raster " +
+                          std::to_string(r.triangles) + " triangles, " + gateFigures(r.report) + "; raster " +
                               formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms"});
   }
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
@@ -175,7 +173,7 @@ int runCheck(CheckArgs& args) {
                               {"settings", settingsLine(args.settings)}, {"scenes", rows}};
     outputs.writeText(args.json, jsonDocument(j));
   }
-  if (!args.junit.empty()) outputs.writeText(args.junit, junitXml("rastercheck check", settingsLine(args.settings), junitCases));
+  if (!args.junit.empty()) outputs.writeText(args.junit, junitXml("rastercheck check", {{"settings", settingsLine(args.settings)}}, junitCases));
   outputs.keep();
   return allPass ? 0 : 1;
 }

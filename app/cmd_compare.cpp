@@ -1,8 +1,10 @@
 // `rastercheck compare TEST.exr REF.exr [--heatmap FILE.exr] [--json FILE] [thresholds]`
+#include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "app/commands.h"
+#include "app/junit.h"
 #include "app/options.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
@@ -14,14 +16,18 @@ namespace rc::app {
 namespace {
 
 struct CompareArgs {
-  std::string test, reference, heatmap, heatmapPng, json;
+  std::string test, reference, heatmap, heatmapPng, json, junit;
   Thresholds thresholds;
 };
 
 int runCompare(CompareArgs& args) {
+  const auto started = std::chrono::steady_clock::now();
   takeStandardOutputByName(args.json);
-  const std::vector<OutputOption> outputList = {
-      {"--heatmap", args.heatmap, ".exr"}, {"--heatmap-png", args.heatmapPng, ".png"}, {"--json", args.json, "", true}};
+  takeStandardOutputByName(args.junit);
+  const std::vector<OutputOption> outputList = {{"--heatmap", args.heatmap, ".exr"},
+                                                {"--heatmap-png", args.heatmapPng, ".png"},
+                                                {"--json", args.json, "", true},
+                                                {"--junit", args.junit, ".xml", true}};
   checkOutputs(outputList, {args.test, args.reference});
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
@@ -37,6 +43,11 @@ int runCompare(CompareArgs& args) {
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
   outputs.writeText(args.json, jsonDocument(reportToJson(report)));
+  if (!args.junit.empty()) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    outputs.writeText(args.junit, junitXml("rastercheck compare", {{"reference", args.reference}},
+                                           {{args.test, seconds, report.reasons, gateFigures(report)}}));
+  }
   outputs.keep();
   return report.pass ? 0 : 1;
 }
@@ -52,6 +63,8 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--heatmap", args->heatmap, "write an error heatmap EXR here");
   command->add_option("--heatmap-png", args->heatmapPng, "write the heatmap as a PNG with a legend here");
   command->add_option("--json", args->json, "write the JSON report here ('-': standard output, and the table to stderr)");
+  command->add_option("--junit", args->junit,
+                      "write the verdict as JUnit XML for CI test reports, one test case named by the test image ('-': standard output)");
   addThresholdOptions(command, args->thresholds);
   command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/html_report.h"
+#include "compare/report.h"
 
 namespace rc::app {
 
@@ -18,7 +19,16 @@ std::string seconds(double s) {
 
 }  // namespace
 
-std::string junitXml(const std::string& suite, const std::string& settings, const std::vector<JUnitCase>& cases) {
+std::string gateFigures(const CompareReport& report) {
+  const FamilyStats& bary = report.families[0].stats;
+  const FamilyStats& depth = report.families[1].stats;
+  return std::to_string(report.width) + "x" + std::to_string(report.height) + ": bary max " + formatNumber(bary.max) +
+         ", p99.9 " + formatNumber(bary.p999) + "; depth max " + formatNumber(depth.max) + "; disagreement " +
+         formatNumber(report.disagreementFraction);
+}
+
+std::string junitXml(const std::string& suite, const std::vector<std::pair<std::string, std::string>>& properties,
+                     const std::vector<JUnitCase>& cases) {
   std::size_t failures = 0;
   double total = 0;
   for (const JUnitCase& c : cases) {
@@ -34,8 +44,11 @@ std::string junitXml(const std::string& suite, const std::string& settings, cons
       << "<testsuites name=\"" << escapeMarkup(suite) << "\"" << counts << " time=\"" << seconds(total) << "\">\n"
       << "  <testsuite name=\"" << escapeMarkup(suite) << "\"" << counts << " skipped=\"0\" time=\"" << seconds(total)
       << "\">\n"
-      << "    <properties>\n      <property name=\"settings\" value=\"" << escapeMarkup(settings) << "\"/>\n"
-      << "    </properties>\n";
+      << "    <properties>\n";
+  for (const auto& [name, value] : properties) {
+    xml << "      <property name=\"" << escapeMarkup(name) << "\" value=\"" << escapeMarkup(value) << "\"/>\n";
+  }
+  xml << "    </properties>\n";
   for (const JUnitCase& c : cases) {
     xml << "    <testcase classname=\"" << escapeMarkup(classname) << "\" name=\"" << escapeMarkup(c.name) << "\" time=\""
         << seconds(c.seconds) << "\">\n";

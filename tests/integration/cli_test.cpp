@@ -837,6 +837,32 @@ TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
   EXPECT_EQ(run("check cube --junit " + (temp.path() / "r.json").string()).exitCode, 2);
 }
 
+// compare --junit: one test case, named by the test image, with the reference as a property.
+TEST(Cli, CompareWritesJUnitXmlWithOneCase) {
+  const rc::testing::TempDir temp;
+  const std::string raster = (temp.path() / "cube.raster.exr").string(), affine = (temp.path() / "cube.affine.exr").string(),
+                    reference = (temp.path() / "cube.reference.exr").string();
+  ASSERT_EQ(run("render cube --backend raster -o " + raster).exitCode, 0);
+  ASSERT_EQ(run("render cube --backend raster --mode affine -o " + affine).exitCode, 0);
+  ASSERT_EQ(run("render cube --backend reference -o " + reference).exitCode, 0);
+  const auto junit = [&](const std::string& test, int expectedExit) {
+    const fs::path xml = temp.path() / "compare.xml";
+    const CliRun r = run("compare " + test + " " + reference + " --junit " + xml.string());
+    EXPECT_EQ(r.exitCode, expectedExit) << r.output;
+    std::ifstream in(xml);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  };
+  const std::string pass = junit(raster, 0);
+  EXPECT_NE(pass.find("<testsuites name=\"rastercheck compare\" tests=\"1\" failures=\"0\""), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<property name=\"reference\" value=\"" + reference + "\"/>"), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<testcase classname=\"rastercheck.compare\" name=\"" + raster + "\""), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<system-out>640x480: bary max "), std::string::npos) << pass;
+  EXPECT_EQ(pass.find("<failure"), std::string::npos) << pass;
+  const std::string fail = junit(affine, 1);
+  EXPECT_NE(fail.find("tests=\"1\" failures=\"1\""), std::string::npos) << fail;
+  EXPECT_NE(fail.find("<failure type=\"accuracy gate\" message=\"bary: error reaches"), std::string::npos) << fail;
+}
+
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
