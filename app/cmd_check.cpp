@@ -1,7 +1,6 @@
 // `rastercheck check [SCENE...]`: both paths, compare, one row per scene; exit 0 only if every
 // scene passes the gate. --out writes EXRs and PNGs, --report an HTML report, --json a report.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -120,9 +119,9 @@ int runCheck(CheckArgs& args) {
   bool allPass = true;
   for (const Scene& scene : scenes) {
     progress.step(scene.name + ": rasterizer, reference, compare");
-    const auto started = std::chrono::steady_clock::now();
+    const long long started = nowNanoseconds();
     const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantHeatmap);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double seconds = millisecondsSince(started) * 1e-3;
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
     const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);

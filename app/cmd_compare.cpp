@@ -1,5 +1,4 @@
 // `rastercheck compare TEST.exr REF.exr [--heatmap FILE.exr] [--json FILE] [thresholds]`
-#include <chrono>
 #include <cstdio>
 #include <memory>
 
@@ -21,7 +20,7 @@ struct CompareArgs {
 };
 
 int runCompare(CompareArgs& args) {
-  const auto started = std::chrono::steady_clock::now();
+  const long long started = nowNanoseconds();
   takeStandardOutputByName(args.json);
   takeStandardOutputByName(args.junit);
   const std::vector<OutputOption> outputList = {{"--heatmap", args.heatmap, ".exr"},
@@ -44,9 +43,8 @@ int runCompare(CompareArgs& args) {
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
   outputs.writeText(args.json, jsonDocument(reportToJson(report)));
   if (!args.junit.empty()) {
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     outputs.writeText(args.junit, junitXml("rastercheck compare", {{"reference", args.reference}},
-                                           {{args.test, seconds, report.reasons, gateFigures(report)}}));
+                                           {{args.test, millisecondsSince(started) * 1e-3, report.reasons, gateFigures(report)}}));
   }
   outputs.keep();
   return report.pass ? 0 : 1;

@@ -48,10 +48,7 @@ TEST(AtomicOutput, CommitReplacesTheTarget) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
+std::string readText(const fs::path& path) { return rc::testing::readFile(path); }
 
 // A link stays a link: the file it names gets the output.
 TEST(AtomicOutput, ALinkKeepsPointingAtTheFileItNames) {

@@ -161,10 +161,7 @@ std::size_t endOfHeader(const std::string& bytes) {
   return p + 1;
 }
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
+std::string readAll(const std::string& path) { return rc::testing::readFile(path); }
 
 void writeHalfExr(const std::string& path) {
   Imf::Header header(4, 4);

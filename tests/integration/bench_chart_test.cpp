@@ -197,11 +197,7 @@ std::vector<BenchRow> craftedRows() {
 }
 
 // The number of times `needle` occurs in `text`.
-int count(const std::string& text, const std::string& needle) {
-  int n = 0;
-  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
+using rc::testing::occurrences;
 
 // The <circle> elements of an SVG: those with a tooltip, and those with an outline.
 struct Circles {
@@ -254,7 +250,7 @@ TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
                             "pixels in disagreement", "barycentric error, p99.9", ">0<"}) {
     EXPECT_NE(svg.find(label), std::string::npos) << label;
   }
-  EXPECT_EQ(count(svg, ">default<"), 4);
+  EXPECT_EQ(occurrences(svg, ">default<"), 4);
   // Markup in a scene's name is escaped.
   std::vector<BenchRow> odd = craftedRows();
   odd[0].scene = "a<b>&\"c\"";

@@ -645,10 +645,7 @@ TEST(Cli, StandardOutputNamedByAPathIsTakenAsDash) {
   const std::string exe = rc::testing::rastercheckExe();
   const std::string exr = (temp.path() / "cube.exr").string();
   ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
-  const auto text = [](const fs::path& path) {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-  };
+  const auto text = [](const fs::path& path) { return rc::testing::readFile(path); };
 
   const fs::path log = temp.path() / "log.txt";
   std::ofstream(log) << "an earlier line\n";
@@ -752,8 +749,7 @@ TEST(Cli, ASceneNamedInBytesThatAreNotUtf8IsReportedWithReplacementCharacters) {
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(json))["scenes"][0]["scene"], expected);
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(bench))["rows"][0]["scene"], expected);
   for (const std::string& file : {svg, report + "/index.html"}) {
-    std::ifstream in(file);
-    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string text = rc::testing::readFile(file);
     EXPECT_NE(text.find("bad\xEF\xBF\xBDname.obj"), std::string::npos) << file;
     EXPECT_EQ(text.find('\xFF'), std::string::npos) << file;
   }
@@ -803,15 +799,8 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
 // where the scene failed, names escaped.
 TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
   const rc::testing::TempDir temp;
-  const auto text = [](const fs::path& path) {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-  };
-  const auto count = [](const std::string& document, const std::string& needle) {
-    int n = 0;
-    for (std::size_t at = document.find(needle); at != std::string::npos; at = document.find(needle, at + 1)) ++n;
-    return n;
-  };
+  const auto text = [](const fs::path& path) { return rc::testing::readFile(path); };
+  const auto count = rc::testing::occurrences;
   const fs::path obj = temp.path() / "a&b<c>.obj";
   std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
   const fs::path failing = temp.path() / "failing.xml", passing = temp.path() / "passing.xml";
@@ -849,8 +838,7 @@ TEST(Cli, CompareWritesJUnitXmlWithOneCase) {
     const fs::path xml = temp.path() / "compare.xml";
     const CliRun r = run("compare " + test + " " + reference + " --junit " + xml.string());
     EXPECT_EQ(r.exitCode, expectedExit) << r.output;
-    std::ifstream in(xml);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
+    return rc::testing::readFile(xml);
   };
   const std::string pass = junit(raster, 0);
   EXPECT_NE(pass.find("<testsuites name=\"rastercheck compare\" tests=\"1\" failures=\"0\""), std::string::npos) << pass;
