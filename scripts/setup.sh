@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev             # JSON reports and scene files
   libtinyobjloader-dev           # OBJ meshes
   libtinygltf-dev                # glTF 2.0 scenes
+  libmeshoptimizer-dev           # glTF buffers compressed with EXT_meshopt_compression (gltfpack -c)
   libpng-dev                     # PNG images for people
   libfreetype-dev fonts-dejavu-core  # text in PNG heatmap legends and bench charts
   libgtest-dev                   # the test suite
@@ -22,6 +23,7 @@ packages=(
 
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(chromium)           # opens the HTML report headless in the tests
+  packages+=(gltfpack)           # writes quantised and meshopt-compressed glTF for the loader tests
   packages+=(clang libclang-rt-14-dev)  # libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
   packages+=(locales util-linux)  # a comma-decimal locale and a pseudo-terminal for the CLI tests
 fi

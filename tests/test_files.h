@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -51,8 +52,8 @@ inline int occurrences(const std::string& text, const std::string& needle) {
 }
 
 // Runs fn; expects an rc::Error with `code` whose message contains every fragment.
-inline void expectError(const std::function<void()>& fn, ExitCode code,
-                        std::initializer_list<std::string> fragments, const std::string& what) {
+inline void expectError(const std::function<void()>& fn, ExitCode code, const std::vector<std::string>& fragments,
+                        const std::string& what) {
   try {
     fn();
     ADD_FAILURE() << what << ": no error";

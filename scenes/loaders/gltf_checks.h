@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,15 +19,47 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path);
 // or http://, backslashes, and shell or expansion characters.
 void checkUris(const std::string& json, const std::string& path);
 
-// Reads accessor `index` as floats, `components` per element (converting normalised unsigned
-// bytes and shorts when `normalizedOk`). Throws badInput("path: accessors[i]", ...) for a bad
-// index, type, sparse storage or a range outside its buffer view or buffer.
-std::vector<float> readFloats(const tinygltf::Model& model, int index, int components,
-                              bool normalizedOk, const std::string& path);
+// What an accessor is read for: it decides the component types allowed.
+enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices };
 
-// Reads accessor `index` as vertex indices, each checked against `vertexCount`.
-std::vector<unsigned> readIndices(const tinygltf::Model& model, int index, std::size_t vertexCount,
-                                  const std::string& path);
+// Bounds-checked accessor reads (64-bit arithmetic throughout). An accessor without a
+// bufferView holds zeros; sparse storage then replaces the elements it names (indices strictly
+// increasing and below the count, as the specification requires). Component types follow the
+// glTF 2.0 tables, widened by KHR_mesh_quantization's when the file lists it in extensionsUsed;
+// normalised integers are converted as the specification says (c / 255, max(c / 127, -1)...).
+// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...).
+class AccessorReader {
+ public:
+  // The most elements an accessor without a bufferView (zeros, perhaps sparse) may have: such
+  // elements take no bytes in the file, so a small file could otherwise ask for any amount.
+  static constexpr std::uint64_t kMaxZeroElements = std::uint64_t(1) << 24;
+
+  AccessorReader(const tinygltf::Model& model, const std::string& path);
+
+  // `components` per element, converted to float; `displacement` for a morph target's values.
+  std::vector<float> floats(int index, Use use, int components, bool displacement = false) const;
+  // Vertex indices, each checked against `vertexCount`.
+  std::vector<unsigned> indices(int index, std::size_t vertexCount) const;
+  bool quantized() const { return quantized_; }
+
+ private:
+  std::string where(int index) const;
+  const tinygltf::Accessor& accessor(int index, const std::string& what) const;
+  // The accessor's elements packed tightly, sparse replacements applied.
+  std::vector<unsigned char> elements(int index, int components, const std::string& what) const;
+  struct Range {
+    const unsigned char* base;
+    std::uint64_t stride;
+  };
+  // Where `count` elements start in a buffer view, after checking that they lie inside it.
+  Range locate(int viewIndex, long long byteOffset, std::uint64_t count, std::uint64_t element, bool strided,
+               const std::string& where) const;
+  static void copy(const Range& range, std::uint64_t count, std::uint64_t element, unsigned char* out);
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+  bool quantized_ = false;
+};
 
 // Installs file callbacks that read only files inside `folder` and a no-op image decoder.
 void confineLoader(tinygltf::TinyGLTF& loader, const std::string* folder);

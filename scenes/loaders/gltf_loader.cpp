@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "scenes/loaders/gltf_checks.h"
+#include "scenes/loaders/gltf_meshopt.h"
 #include "scenes/loaders/read_file.h"
 
 namespace rc {
@@ -47,37 +48,76 @@ bool finiteMatrix(const glm::dmat4& m) {
   return true;
 }
 
+// Extensions a file may require that rastercheck can honour: KHR_mesh_quantization and
+// EXT_meshopt_compression are read; the
+// others concern materials, textures and lights, which rastercheck never uses (it interpolates
+// the stored TEXCOORD_0, before any texture transform).
+bool honouredExtension(const std::string& e) {
+  return e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression" || e == "KHR_texture_transform" || e == "KHR_texture_basisu" ||
+         e == "EXT_texture_webp" || e == "EXT_texture_avif" || e == "KHR_lights_punctual" || e.rfind("KHR_materials_", 0) == 0;
+}
+
 struct Walker {
   const tinygltf::Model& model;
   const std::string& path;
+  gltf::AccessorReader reader;
   GltfContent content;
   std::set<int> onPath;  // nodes on the current root-to-node path: a repeat is a cycle
 
-  Mesh readPrimitive(const tinygltf::Primitive& primitive, const std::string& where) const {
+  // Adds the primitive's morph targets' displacements of `name` to `values` at `weights` (every
+  // target is read, so a bad one is refused even at weight 0).
+  void morph(const tinygltf::Primitive& primitive, const std::vector<double>& weights, const char* name, gltf::Use use,
+             int components, std::vector<float>& values, const std::string& where) const {
+    std::vector<double> sum;
+    for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
+      auto it = primitive.targets[t].find(name);
+      if (it == primitive.targets[t].end()) continue;
+      const std::vector<float> d = reader.floats(it->second, use, components, true);
+      if (d.size() != values.size()) {
+        throw badInput(where + ".targets[" + std::to_string(t) + "]", std::string(name) + " count differs from the primitive's");
+      }
+      const double w = t < weights.size() ? weights[t] : 0.0;
+      if (w == 0.0) continue;
+      if (sum.empty()) sum.assign(values.begin(), values.end());
+      for (std::size_t i = 0; i < d.size(); ++i) sum[i] += w * double(d[i]);
+    }
+    for (std::size_t i = 0; i < sum.size(); ++i) values[i] = float(sum[i]);
+  }
+
+  // `weights`: the morph target weights in force (the node's, else the mesh's; empty: all 0).
+  Mesh readPrimitive(const tinygltf::Primitive& primitive, const std::vector<double>& weights, const std::string& where) const {
     const auto& attrs = primitive.attributes;
     auto position = attrs.find("POSITION");
     if (position == attrs.end()) throw badInput(where, "primitive without POSITION");
+    if (!weights.empty() && weights.size() != primitive.targets.size()) {
+      throw badInput(where, "has " + std::to_string(primitive.targets.size()) + " morph targets, but " +
+                                std::to_string(weights.size()) + " weights are given");
+    }
     Mesh part;
-    const std::vector<float> p = gltf::readFloats(model, position->second, 3, false, path);
+    std::vector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3);
+    morph(primitive, weights, "POSITION", gltf::Use::kPosition, 3, p, where);
     for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
-    const struct { const char* gltf; const char* name; int components[2]; bool normalized; } kAttributes[] = {
-        {"NORMAL", "normal", {3, 3}, false}, {"TEXCOORD_0", "uv", {2, 2}, true}, {"COLOR_0", "color", {3, 4}, true}};
+    const struct { const char* gltf; const char* name; int components[2]; gltf::Use use; } kAttributes[] = {
+        {"NORMAL", "normal", {3, 3}, gltf::Use::kNormal},
+        {"TEXCOORD_0", "uv", {2, 2}, gltf::Use::kTexcoord},
+        {"COLOR_0", "color", {3, 4}, gltf::Use::kColor}};
     for (const auto& spec : kAttributes) {
       auto it = attrs.find(spec.gltf);
       if (it == attrs.end()) continue;
       const int n = (it->second >= 0 && std::size_t(it->second) < model.accessors.size())
-                        ? tinygltf::GetNumComponentsInType(model.accessors[it->second].type)
+                        ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(it->second)].type))
                         : spec.components[0];
       const int components = (n == spec.components[1]) ? n : spec.components[0];
-      std::vector<float> values = gltf::readFloats(model, it->second, components, spec.normalized, path);
-      if (values.size() != part.positions.size() * components) {
+      std::vector<float> values = reader.floats(it->second, spec.use, components);
+      if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, std::string(spec.gltf) + " count differs from POSITION count");
       }
+      morph(primitive, weights, spec.gltf, spec.use, components, values, where);
       part.attributes.push_back({spec.name, components, std::move(values)});
     }
     std::vector<unsigned> order;
     if (primitive.indices >= 0) {
-      order = gltf::readIndices(model, primitive.indices, part.positions.size(), path);
+      order = reader.indices(primitive.indices, part.positions.size());
     } else {
       for (unsigned i = 0; i < part.positions.size(); ++i) order.push_back(i);
     }
@@ -136,11 +176,12 @@ struct Walker {
       const double det = glm::determinant(glm::dmat3(world));
       if (!(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
       const auto& primitives = model.meshes[node.mesh].primitives;
+      const std::vector<double>& weights = node.weights.empty() ? model.meshes[node.mesh].weights : node.weights;
       for (std::size_t i = 0; i < primitives.size(); ++i) {
         const int mode = primitives[i].mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitives[i].mode;
         if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;  // points, lines
         const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
-        appendMesh(content.mesh, readPrimitive(primitives[i], at), world);
+        appendMesh(content.mesh, readPrimitive(primitives[i], weights, at), world);
       }
     }
     for (int child : node.children) visit(child, world, depth + 1);
@@ -155,6 +196,9 @@ GltfContent loadGltf(const std::string& path) {
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const std::string json = binary ? gltf::glbJsonChunk(bytes, path) : bytes;
   gltf::checkUris(json, path);
+  const gltf::MeshoptPlan meshopt = gltf::planMeshopt(json, path);
+  const std::string input = !meshopt.changed ? std::string() : binary ? gltf::replaceGlbJson(bytes, meshopt.json) : meshopt.json;
+  const std::string& text = meshopt.changed ? input : bytes;
 
   std::error_code ec;
   const std::string folder = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).parent_path().string();
@@ -162,21 +206,22 @@ GltfContent loadGltf(const std::string& path) {
   gltf::confineLoader(loader, &folder);
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                       unsigned(bytes.size()), folder)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), folder);
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(text.data()),
+                                                       unsigned(text.size()), folder)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), folder);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     throw badInput(path, "not a valid glTF 2.0 file: " + err);
   }
   if (model.asset.version.rfind("2.", 0) != 0) throw badInput(path + ": /asset/version", "'" + model.asset.version + "' is not 2.x");
-  if (!model.extensionsRequired.empty()) {
-    std::string names;
-    for (const std::string& e : model.extensionsRequired) names += (names.empty() ? "" : ", ") + e;
-    throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + names);
+  std::string unread;
+  for (const std::string& e : model.extensionsRequired) {
+    if (!honouredExtension(e)) unread += (unread.empty() ? "" : ", ") + e;
   }
+  if (!unread.empty()) throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + unread);
+  gltf::decodeMeshopt(model, meshopt, path);
 
-  Walker walker{model, path, {}, {}};
+  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}};
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;

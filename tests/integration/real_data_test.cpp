@@ -2,10 +2,14 @@
 // file; the channels written are exactly what each file carries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 
 #include "app/check.h"
 #include "scenes/scene_loader.h"
+#include "tests/run_command.h"
 #include "tests/test_files.h"
 
 namespace rc {
@@ -88,6 +92,112 @@ TEST(SharedData, AllFilesTogetherThroughASceneFilePassTheGate) {
   const app::CheckResult r = app::checkScene(scene, defaults(), Thresholds{}, false);
   EXPECT_TRUE(r.report.pass);
   EXPECT_GT(r.report.classCounts[int(PixelClass::kSameTriangle)], 10000u);
+}
+
+// A triangle's corners, each as its position and normal (if any), turned so that the smallest
+// corner comes first: the same triangle whichever corner an index codec starts it from.
+using Corner = std::array<float, 6>;
+using CornerTriangle = std::array<Corner, 3>;
+
+std::vector<CornerTriangle> cornerTriangles(const Mesh& mesh) {
+  const Attribute* normal = mesh.findAttribute("normal");
+  std::vector<CornerTriangle> out;
+  for (const glm::uvec3& t : mesh.triangles) {
+    CornerTriangle c;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = mesh.positions[t[k]];
+      c[k] = {p.x, p.y, p.z, 0, 0, 0};
+      if (normal) std::copy_n(normal->values.begin() + 3 * std::ptrdiff_t(t[k]), 3, c[k].begin() + 3);
+    }
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    out.push_back(c);
+  }
+  return out;
+}
+
+// The largest difference between two triangle lists, corner by corner: positions in [0], normals in [1].
+std::array<float, 2> largestDifference(const std::vector<CornerTriangle>& a, const std::vector<CornerTriangle>& b) {
+  std::array<float, 2> worst{0, 0};
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      for (int c = 0; c < 6; ++c) worst[c / 3] = std::max(worst[c / 3], std::fabs(a[i][k][c] - b[i][k][c]));
+    }
+  }
+  return worst;
+}
+
+// The list in the order of the triangles' positions (corner by corner), for codecs that reorder.
+std::vector<CornerTriangle> byPosition(std::vector<CornerTriangle> list) {
+  auto positions = [](const CornerTriangle& t) {
+    return std::array<float, 9>{t[0][0], t[0][1], t[0][2], t[1][0], t[1][1], t[1][2], t[2][0], t[2][1], t[2][2]};
+  };
+  std::sort(list.begin(), list.end(), [&](const CornerTriangle& a, const CornerTriangle& b) { return positions(a) < positions(b); });
+  return list;
+}
+
+// Bounding box corners and the sum of the triangles' areas.
+std::array<double, 7> extentAndArea(const std::vector<CornerTriangle>& list) {
+  std::array<double, 7> r{1e30, 1e30, 1e30, -1e30, -1e30, -1e30, 0};
+  for (const CornerTriangle& t : list) {
+    for (const Corner& c : t) {
+      for (int a = 0; a < 3; ++a) r[a] = std::min(r[a], double(c[a])), r[3 + a] = std::max(r[3 + a], double(c[a]));
+    }
+    const glm::dvec3 p0(t[0][0], t[0][1], t[0][2]), p1(t[1][0], t[1][1], t[1][2]), p2(t[2][0], t[2][1], t[2][2]);
+    r[6] += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+  }
+  return r;
+}
+
+// gltfpack (meshoptimizer's glTF packer, a Debian package) writes what web pipelines ship:
+// positions and normals quantised (KHR_mesh_quantization) and, with -c or -cc, buffer views
+// compressed (EXT_meshopt_compression, with the octahedral filter for normals under -cc).
+// Compressed variants must load as exactly the triangles of the quantised one (in the same order
+// for -c, in another for -cc, whose octahedral filter re-encodes the normals); quantised ones as
+// the float original's within the quantisation.
+TEST(SharedData, GltfpackOutputLoadsAsTheSameTrianglesQuantisedOrCompressed) {
+  const std::string data = testing::sharedData();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  if (testing::runCommand("gltfpack -h").output.find("gltfpack") == std::string::npos) {
+    GTEST_SKIP() << "gltfpack is absent (scripts/setup.sh --test installs it)";
+  }
+  testing::TempDir dir;
+  for (const char* name : {"suzanne", "spot", "fandisk"}) {
+    auto pack = [&](const std::string& options, const std::string& out) {
+      const std::string file = dir.file(std::string(name) + out);
+      const testing::CommandResult r =
+          testing::runCommand("gltfpack -i " + data + "/obj/" + name + ".obj -o " + file + " " + options);
+      EXPECT_EQ(r.exitCode, 0) << r.output;
+      return cornerTriangles(loadScene(file).mesh);
+    };
+    const std::vector<CornerTriangle> plain = pack("-noq", ".plain.gltf");
+    const std::vector<CornerTriangle> quantised = pack("", ".q.glb");
+    const std::vector<CornerTriangle> normalised = pack("-vpn", ".vpn.glb");
+    const std::size_t triangles = loadScene(data + "/obj/" + name + ".obj").mesh.triangleCount();
+    EXPECT_EQ(plain.size(), triangles) << name;
+    ASSERT_EQ(quantised.size(), triangles) << name;
+    ASSERT_EQ(normalised.size(), triangles) << name;
+    // 14-bit positions over the mesh's extent (the meshes here are at most 2 units across); the
+    // packer may order the triangles differently once their vertices are quantised.
+    const std::array<double, 7> original = extentAndArea(plain);
+    for (const auto* variant : {&quantised, &normalised}) {
+      const std::array<double, 7> q = extentAndArea(*variant);
+      for (int a = 0; a < 6; ++a) EXPECT_NEAR(q[a], original[a], 2e-4) << name << ", box coordinate " << a;
+      EXPECT_NEAR(q[6], original[6], 1e-3 * original[6]) << name << ", area";
+    }
+    EXPECT_NE(byPosition(plain), byPosition(quantised)) << name << ": the positions were quantised";
+    for (const auto& [options, out] : {std::pair{"-c", ".c.glb"}, {"-c", ".c.gltf"}, {"-cf", ".cf.glb"}}) {
+      const std::vector<CornerTriangle> packed = pack(options, out);
+      ASSERT_EQ(packed.size(), triangles) << name << " " << options;
+      EXPECT_EQ(largestDifference(quantised, packed), (std::array<float, 2>{0, 0})) << name << " " << options << out;
+    }
+    const std::vector<CornerTriangle> packedNormalised = pack("-vpn -c", ".vpnc.glb");
+    EXPECT_EQ(largestDifference(normalised, packedNormalised), (std::array<float, 2>{0, 0})) << name;
+    const std::vector<CornerTriangle> dense = pack("-cc", ".cc.glb");
+    ASSERT_EQ(dense.size(), triangles) << name;
+    const std::array<float, 2> d = largestDifference(byPosition(quantised), byPosition(dense));
+    EXPECT_EQ(d[0], 0.0f) << name;
+    EXPECT_LT(d[1], 0.03f) << name << ": normals through the octahedral filter";
+  }
 }
 
 }  // namespace

@@ -1,9 +1,17 @@
 // glTF loading: the sample file's camera and transforms, GLB, and hostile files refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+#include <cstdint>
 #include <cstring>
+#include <vector>
 
+#include "core/error.h"
 #include "scenes/loaders/gltf_loader.h"
 #include "tests/test_files.h"
 
@@ -142,6 +150,298 @@ TEST(GltfLoader, GlbLoadsAndBadHeadersAreRefusedWithTheirByteOffset) {
   testing::expectError([&] { loadGltf(dir.write("magic.glb", wrongMagic)); }, ExitCode::kBadInput, {"magic.glb"}, "magic");
   testing::expectError([&] { loadGltf(dir.write("length.glb", glb(json, triangleBytes(), 9999))); }, ExitCode::kBadInput,
                        {"length.glb: byte 8", "declared length"}, "length");
+}
+
+// The bytes of `values` as the type T stores them (little-endian, as glTF).
+template <typename T>
+std::string bytesOf(std::initializer_list<T> values) {
+  std::string out;
+  for (T v : values) out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  return out;
+}
+
+// One buffer (embedded) with a buffer view per chunk, accessors given as JSON objects, and one
+// mesh of one primitive on one node.
+struct GltfBuilder {
+  std::string bin;
+  std::vector<std::string> views, accessors;
+
+  int view(std::string bytes, int stride = 0) {
+    while (bin.size() % 4) bin += '\0';
+    views.push_back(R"({"buffer": 0, "byteOffset": )" + std::to_string(bin.size()) + R"(, "byteLength": )" +
+                    std::to_string(bytes.size()) + (stride ? R"(, "byteStride": )" + std::to_string(stride) : "") + "}");
+    bin += bytes;
+    return int(views.size()) - 1;
+  }
+  int accessor(const std::string& json) {
+    accessors.push_back(json);
+    return int(accessors.size()) - 1;
+  }
+  // `primitive` and `mesh` are spliced into their objects, `top` into the top-level one.
+  std::string text(const std::string& primitive, const std::string& mesh = "", const std::string& top = "",
+                   const std::string& node = "") const {
+    auto join = [](const std::vector<std::string>& items) {
+      std::string out;
+      for (const std::string& i : items) out += (out.empty() ? "" : ", ") + i;
+      return out;
+    };
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0)" + node +
+           R"(}], "meshes": [{"primitives": [{)" + primitive + "}]" + mesh + R"(}], "buffers": [{"uri": ")" +
+           dataUri(bin) + R"(", "byteLength": )" + std::to_string(bin.size()) + R"(}], "bufferViews": [)" + join(views) +
+           R"(], "accessors": [)" + join(accessors) + "]" + top + "}";
+  }
+};
+
+std::string denseVec3(int view, int count, int type = 5126, const std::string& more = "") {
+  return R"({"bufferView": )" + std::to_string(view) + R"(, "componentType": )" + std::to_string(type) +
+         R"(, "count": )" + std::to_string(count) + R"(, "type": "VEC3")" + more + "}";
+}
+
+std::string sparse(int count, int indicesView, int indexType, int valuesView) {
+  return R"(, "sparse": {"count": )" + std::to_string(count) + R"(, "indices": {"bufferView": )" + std::to_string(indicesView) +
+         R"(, "componentType": )" + std::to_string(indexType) + R"(}, "values": {"bufferView": )" +
+         std::to_string(valuesView) + "}}";
+}
+
+void expectPositions(const Mesh& mesh, std::initializer_list<glm::vec3> expected, const std::string& what) {
+  ASSERT_EQ(mesh.positions.size(), expected.size()) << what;
+  std::size_t i = 0;
+  for (const glm::vec3& e : expected) {
+    EXPECT_EQ(mesh.positions[i].x, e.x) << what << ", vertex " << i;
+    EXPECT_EQ(mesh.positions[i].y, e.y) << what << ", vertex " << i;
+    EXPECT_EQ(mesh.positions[i].z, e.z) << what << ", vertex " << i;
+    ++i;
+  }
+}
+
+TEST(GltfLoader, SparseAccessorsReplaceTheElementsTheyName) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5}));
+  const int indices = b.view(bytesOf<std::uint16_t>({1, 3}));
+  const int values = b.view(bytesOf<float>({2, 0, 0, 1, 1, 0}));
+  b.accessor(denseVec3(base, 4, 5126, sparse(2, indices, 5123, values)));
+  Mesh mesh = loadGltf(dir.write("sparse.gltf", b.text(R"("attributes": {"POSITION": 0})"))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "sparse over a buffer view");
+
+  // Without a bufferView the accessor is zeros, which the sparse values then replace.
+  GltfBuilder z;
+  const int zi = z.view(bytesOf<std::uint8_t>({1, 2}));
+  const int zv = z.view(bytesOf<float>({1, 0, 0, 0, 1, 0}));
+  z.accessor(R"({"componentType": 5126, "count": 3, "type": "VEC3")" + sparse(2, zi, 5121, zv) + "}");
+  mesh = loadGltf(dir.write("zeros.gltf", z.text(R"("attributes": {"POSITION": 0})"))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "sparse over zeros");
+  EXPECT_EQ(mesh.triangleCount(), 1u);
+}
+
+TEST(GltfLoader, BadSparseStorageIsRefusedNamingItsPlace) {
+  TempDir dir;
+  struct Case { std::vector<std::uint32_t> indices; int count; int indexType; std::vector<std::string> fragments; };
+  const Case cases[] = {
+      {{2, 1}, 2, 5125, {"bad.gltf: accessors[0].sparse.indices", "element 1 (1) does not increase strictly"}},
+      {{1, 1}, 2, 5125, {"accessors[0].sparse.indices", "does not increase strictly"}},
+      {{0, 3}, 2, 5125, {"accessors[0].sparse.indices", "index 3 at element 1", "count 3"}},
+      {{0, 1}, 0, 5125, {"accessors[0].sparse", "count 0 is not between 1 and the accessor's count 3"}},
+      {{0, 1}, 4, 5125, {"accessors[0].sparse", "count 4"}},
+      {{0, 1}, 2, 5126, {"accessors[0].sparse.indices", "component type 5126"}},
+      {{0, 1, 2}, 3, 5125, {"accessors[0].sparse.values", "range of 3 elements exceeds"}},
+  };
+  for (const Case& c : cases) {
+    GltfBuilder b;
+    const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+    std::string indexBytes;
+    for (std::uint32_t i : c.indices) indexBytes += bytesOf<std::uint32_t>({i});
+    const int indices = b.view(indexBytes);
+    const int values = b.view(bytesOf<float>({1, 1, 1, 2, 2, 2}));  // two elements
+    b.accessor(denseVec3(base, 3, 5126, sparse(c.count, indices, c.indexType, values)));
+    const std::string path = dir.write("bad.gltf", b.text(R"("attributes": {"POSITION": 0})"));
+    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, c.fragments, c.fragments.back());
+  }
+  // A huge count of zeros needs no bytes in the file, so it is bounded on its own; a huge count
+  // over a small buffer view is refused before anything is allocated.
+  GltfBuilder huge;
+  huge.view(bytesOf<float>({0}));  // tinygltf refuses an empty buffer
+  huge.accessor(R"({"componentType": 5126, "count": 16777217, "type": "VEC3"})");
+  testing::expectError([&] { loadGltf(dir.write("huge.gltf", huge.text(R"("attributes": {"POSITION": 0})"))); },
+                       ExitCode::kBadInput, {"accessors[0]", "count 16777217 of elements without a bufferView is over 16777216"},
+                       "huge zeros");
+  huge.accessors[0] = R"({"bufferView": 0, "componentType": 5126, "count": 4000000000, "type": "VEC3"})";
+  testing::expectError([&] { loadGltf(dir.write("huge.gltf", huge.text(R"("attributes": {"POSITION": 0})"))); },
+                       ExitCode::kBadInput, {"accessors[0]", "range of 4000000000 elements exceeds"}, "huge over a view");
+}
+
+TEST(GltfLoader, QuantizedAttributesLoadWhereTheFileUsesKhrMeshQuantization) {
+  TempDir dir;
+  GltfBuilder b;
+  // Positions: normalised SHORT, padded to 8 bytes a vertex; -32768 and -32767 both give -1.
+  const int p = b.view(bytesOf<std::int16_t>({0, 0, 0, 0, 32767, -32768, 0, 0, 0, -32767, 16384, 0}), 8);
+  // Normals: normalised BYTE, padded to 4 bytes.
+  const int n = b.view(bytesOf<std::int8_t>({0, 0, 127, 0, 0, 0, -127, 0, 0, -128, 0, 0}), 4);
+  // UVs: UNSIGNED_SHORT, not normalised (the texture transform would scale them).
+  const int t = b.view(bytesOf<std::uint16_t>({0, 0, 1000, 0, 0, 65535}));
+  b.accessor(denseVec3(p, 3, 5122, R"(, "normalized": true)"));
+  b.accessor(denseVec3(n, 3, 5120, R"(, "normalized": true)"));
+  b.accessor(R"({"bufferView": )" + std::to_string(t) + R"(, "componentType": 5123, "count": 3, "type": "VEC2"})");
+  const std::string primitive = R"("attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2})";
+  testing::expectError([&] { loadGltf(dir.write("plain.gltf", b.text(primitive))); }, ExitCode::kBadInput,
+                       {"plain.gltf: accessors[0]", "normalised SHORT components are not allowed for POSITION",
+                        "unless the file lists KHR_mesh_quantization in extensionsUsed"},
+                       "quantised without the extension");
+  const std::string used = R"(, "extensionsUsed": ["KHR_mesh_quantization", "KHR_materials_unlit"],
+      "extensionsRequired": ["KHR_mesh_quantization", "KHR_materials_unlit"])";
+  const Mesh mesh = loadGltf(dir.write("quantized.gltf", b.text(primitive, "", used))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, -1, 0}, {0, -1, 16384.0f / 32767.0f}}, "quantised positions");
+  const Attribute* normal = mesh.findAttribute("normal");
+  ASSERT_NE(normal, nullptr);
+  EXPECT_EQ(normal->values, (std::vector<float>{0, 0, 1, 0, 0, -1, 0, -1, 0}));
+  const Attribute* uv = mesh.findAttribute("uv");
+  ASSERT_NE(uv, nullptr);
+  EXPECT_EQ(uv->values, (std::vector<float>{0, 0, 1000, 0, 0, 65535}));
+
+  // Normals may not be quantised without normalisation, even with the extension.
+  GltfBuilder raw = b;
+  raw.accessors[1] = denseVec3(n, 3, 5120);
+  testing::expectError([&] { loadGltf(dir.write("raw.gltf", raw.text(primitive, "", used))); }, ExitCode::kBadInput,
+                       {"accessors[1]", "BYTE components are not allowed for NORMAL"}, "unnormalised normals");
+  // Extensions that change the geometry are still refused by name.
+  testing::expectError(
+      [&] {
+        loadGltf(dir.write("draco.gltf",
+                           b.text(primitive, "", R"(, "extensionsRequired": ["KHR_mesh_quantization", "KHR_draco_mesh_compression"])")));
+      },
+      ExitCode::kBadInput, {"/extensionsRequired", "does not read: KHR_draco_mesh_compression"}, "draco");
+}
+
+TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  const int uvs = b.view(bytesOf<float>({0, 0, 1, 0, 0, 1}));
+  // Target 0 moves vertex 2 up by 2 (sparse, over zeros); target 1 moves every uv by (0.5, 0).
+  const int ti = b.view(bytesOf<std::uint8_t>({2}));
+  const int tv = b.view(bytesOf<float>({0, 2, 0}));
+  const int duv = b.view(bytesOf<float>({0.5f, 0, 0.5f, 0, 0.5f, 0}));
+  b.accessor(denseVec3(base, 3));
+  b.accessor(R"({"bufferView": )" + std::to_string(uvs) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
+  b.accessor(R"({"componentType": 5126, "count": 3, "type": "VEC3")" + sparse(1, ti, 5121, tv) + "}");
+  b.accessor(R"({"bufferView": )" + std::to_string(duv) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
+  const std::string primitive =
+      R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "targets": [{"POSITION": 2}, {"TEXCOORD_0": 3}])";
+
+  Mesh mesh = loadGltf(dir.write("rest.gltf", b.text(primitive))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "no weights: the base shape");
+  mesh = loadGltf(dir.write("mesh.gltf", b.text(primitive, R"(, "weights": [0.5, 1])"))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}}, "the mesh's weights");
+  EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0.5f, 0, 1.5f, 0, 0.5f, 1}));
+  mesh = loadGltf(dir.write("node.gltf", b.text(primitive, R"(, "weights": [0.5, 1])", "", R"(, "weights": [1.5, 0])"))).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 4, 0}}, "the node's weights override the mesh's");
+  EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0, 0, 1, 0, 0, 1}));
+
+  testing::expectError([&] { loadGltf(dir.write("count.gltf", b.text(primitive, R"(, "weights": [1])"))); },
+                       ExitCode::kBadInput, {"meshes[0].primitives[0]", "has 2 morph targets, but 1 weights are given"},
+                       "weights count");
+  // A target that is not used (weight 0) is still read, and refused when it is bad.
+  GltfBuilder bad = b;
+  bad.accessors[3] = R"({"bufferView": )" + std::to_string(duv) + R"(, "componentType": 5126, "count": 2, "type": "VEC2"})";
+  testing::expectError([&] { loadGltf(dir.write("bad.gltf", bad.text(primitive, R"(, "weights": [1, 0])"))); },
+                       ExitCode::kBadInput, {"meshes[0].primitives[0].targets[1]", "TEXCOORD_0 count differs"}, "bad target");
+}
+
+// A glTF of two triangles whose buffer views are compressed with meshoptimizer's encoders (as
+// gltfpack -c writes them), the uncompressed views in a fallback buffer that holds no data.
+// `edit` changes the JSON document before it is written.
+// With `binChunk`, buffer 0 has no URI and its bytes go there instead (for a GLB's BIN chunk).
+std::string meshoptGltf(const std::function<void(nlohmann::json&)>& edit = {}, std::string* binChunk = nullptr) {
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  const unsigned indices[6] = {0, 1, 2, 2, 1, 3};
+  std::string vertices(meshopt_encodeVertexBufferBound(4, 12), '\0');
+  vertices.resize(meshopt_encodeVertexBuffer(reinterpret_cast<unsigned char*>(vertices.data()), vertices.size(), positions, 4, 12));
+  std::string triangles(meshopt_encodeIndexBufferBound(6, 4), '\0');
+  triangles.resize(meshopt_encodeIndexBuffer(reinterpret_cast<unsigned char*>(triangles.data()), triangles.size(), indices, 6));
+  const std::string& packed = triangles;
+  std::string bin = vertices;
+  while (bin.size() % 4) bin += '\0';
+  const std::size_t indexOffset = bin.size();
+  bin += packed;
+  nlohmann::json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"EXT_meshopt_compression"}},
+      {"extensionsRequired", {"EXT_meshopt_compression"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"buffers",
+       {{{"uri", dataUri(bin)}, {"byteLength", bin.size()}},
+        {{"byteLength", 48 + 24}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}},
+      {"bufferViews",
+       {{{"buffer", 1}, {"byteOffset", 0}, {"byteLength", 48}, {"byteStride", 12},
+         {"extensions", {{"EXT_meshopt_compression", {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vertices.size()},
+                                                      {"byteStride", 12}, {"mode", "ATTRIBUTES"}, {"count", 4}}}}}},
+        {{"buffer", 1}, {"byteOffset", 48}, {"byteLength", 24},
+         {"extensions", {{"EXT_meshopt_compression", {{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", packed.size()},
+                                                      {"byteStride", 4}, {"mode", "TRIANGLES"}, {"count", 6}}}}}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}}};
+  if (binChunk) {
+    doc["buffers"][0].erase("uri");
+    *binChunk = bin;
+  }
+  if (edit) edit(doc);
+  return doc.dump();
+}
+
+TEST(GltfLoader, MeshoptCompressedBufferViewsAreDecoded) {
+  TempDir dir;
+  const Mesh mesh = loadGltf(dir.write("meshopt.gltf", meshoptGltf())).mesh;
+  expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "decoded positions");
+  ASSERT_EQ(mesh.triangleCount(), 2u);
+  // The index codec may start a triangle at another corner; the triangles stay the same.
+  for (std::size_t t = 0; t < 2; ++t) {
+    std::array<unsigned, 3> corners{mesh.triangles[t][0], mesh.triangles[t][1], mesh.triangles[t][2]};
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    EXPECT_EQ(corners, (t == 0 ? std::array<unsigned, 3>{0, 1, 2} : std::array<unsigned, 3>{1, 3, 2})) << "triangle " << t;
+  }
+  // The same in a GLB.
+  std::string bin;
+  const std::string json = meshoptGltf({}, &bin);
+  expectPositions(loadGltf(dir.write("meshopt.glb", glb(json, bin))).mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}},
+                  "decoded from a GLB");
+
+  const std::string ext = "/bufferViews/0/extensions/EXT_meshopt_compression";
+  struct Case { std::function<void(nlohmann::json&)> edit; std::vector<std::string> fragments; };
+  const Case cases[] = {
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["mode"] = "VERTICES"; },
+       {"bad.gltf: " + ext + "/mode", "is not one of ATTRIBUTES, TRIANGLES, INDICES"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 10; },
+       {ext + "/byteStride", "10 is not a multiple of 4"}},
+      {[](nlohmann::json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["count"] = 5; },
+       {"/bufferViews/1/extensions/EXT_meshopt_compression/count", "5 is not a multiple of 3"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"] = -3; },
+       {ext + "/byteLength", "is not a non-negative integer"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteOffset"] = 1000; },
+       {"bad.gltf: bufferViews[0]", "compressed range runs past the end of buffer 0"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"] = 4; },
+       {"bufferViews[0]", "compressed data is invalid"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["byteLength"] = 36; },
+       {"bufferViews[0]", "byteLength 36 is not count x byteStride (48)"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["buffer"] = 1; },
+       {"bufferViews[0]", "names buffer 1, which holds no data"}},
+      {[](nlohmann::json& d) { d["bufferViews"][1].erase("extensions"); },
+       {"bufferViews[1]", "reads buffer 1, a fallback that holds no data"}},
+      {[](nlohmann::json& d) {
+         d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 1u << 24;
+         d["bufferViews"][0]["byteLength"] = 12u << 24;
+       },
+       {"bufferViews[0]", "more than meshoptimizer's codecs can expand"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["filter"] = "OCTAHEDRAL"; },
+       {ext + "/byteStride", "does not suit the OCTAHEDRAL filter"}},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.write("bad.gltf", meshoptGltf(c.edit));
+    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, c.fragments, c.fragments.back());
+  }
 }
 
 }  // namespace
