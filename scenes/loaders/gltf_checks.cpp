@@ -102,6 +102,9 @@ const char* useName(Use use) {
     case Use::kTexcoord: return "TEXCOORD_0";
     case Use::kColor: return "COLOR_0";
     case Use::kIndices: return "indices";
+    case Use::kJoints: return "JOINTS";
+    case Use::kWeights: return "WEIGHTS";
+    case Use::kMatrix: return "inverseBindMatrices";
   }
   return "";
 }
@@ -114,9 +117,12 @@ bool isSmallInteger(int type) {
 // The glTF 2.0 specification's tables of accessor component types for vertex attributes and for
 // morph targets (whose values are displacements), widened by KHR_mesh_quantization's.
 bool allowedType(Use use, bool displacement, int type, bool normalized, bool quantized) {
-  if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+  if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return use != Use::kJoints;
   if (!isSmallInteger(type)) return false;
   switch (use) {
+    case Use::kJoints: return !normalized && !isSigned(type);
+    case Use::kWeights: return normalized && !isSigned(type);
+    case Use::kMatrix: return false;
     case Use::kPosition:  // KHR_mesh_quantization: any 8- or 16-bit integer; signed ones for displacements
       return quantized && (!displacement || isSigned(type));
     case Use::kNormal:  // KHR_mesh_quantization: signed normalised

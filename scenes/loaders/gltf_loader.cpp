@@ -138,6 +138,90 @@ struct Walker {
     return part;
   }
 
+  std::vector<int> parents;  // each node's parent (-1: a root), made on first use
+
+  // A node's world transform, from its ancestors (a skin's joints need not lie on the walk).
+  glm::dmat4 worldOf(int index) {
+    if (parents.empty()) {
+      parents.assign(model.nodes.size(), -1);
+      for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+        for (int c : model.nodes[i].children) {
+          if (c >= 0 && std::size_t(c) < parents.size()) parents[std::size_t(c)] = int(i);
+        }
+      }
+    }
+    glm::dmat4 m(1.0);
+    int depth = 0;
+    for (int n = index; n >= 0; n = parents[std::size_t(n)]) {
+      if (++depth > kMaxNodeDepth) {
+        throw badInput(path + ": nodes[" + std::to_string(index) + "]", "ancestry deeper than " + std::to_string(kMaxNodeDepth) + " or cyclic");
+      }
+      m = localMatrix(model.nodes[std::size_t(n)]) * m;
+    }
+    return m;
+  }
+
+  // Poses a skinned primitive as its joints' nodes stand (no animation is played): each vertex by
+  // the weighted sum of its joints' world transform times inverse bind matrix, as glTF specifies;
+  // the mesh node's own transform does not apply. Positions and normals end in world space.
+  void applySkin(int skinIndex, const tinygltf::Primitive& primitive, Mesh& part, const std::string& where) {
+    if (std::size_t(skinIndex) >= model.skins.size()) throw badInput(where, "skin index " + std::to_string(skinIndex) + " out of range");
+    const tinygltf::Skin& skin = model.skins[std::size_t(skinIndex)];
+    const std::string at = path + ": skins[" + std::to_string(skinIndex) + "]";
+    if (skin.joints.empty()) throw badInput(at, "has no joints");
+    std::vector<float> inverseBind;
+    if (skin.inverseBindMatrices >= 0) {
+      inverseBind = reader.floats(skin.inverseBindMatrices, gltf::Use::kMatrix, 16);
+      if (inverseBind.size() < 16 * skin.joints.size()) throw badInput(at, "has fewer inverseBindMatrices than joints");
+    }
+    std::vector<glm::dmat4> joints;
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      const int node = skin.joints[j];
+      if (node < 0 || std::size_t(node) >= model.nodes.size()) throw badInput(at, "joint " + std::to_string(j) + " names no node");
+      glm::dmat4 bind(1.0);
+      for (std::size_t k = 0; k < 16 && !inverseBind.empty(); ++k) bind[int(k / 4)][int(k % 4)] = inverseBind[16 * j + k];
+      joints.push_back(worldOf(node) * bind);
+      if (!finiteMatrix(joints.back())) throw badInput(at, "joint " + std::to_string(j) + "'s transform is not finite");
+    }
+    std::vector<glm::dmat4> blend(part.positions.size(), glm::dmat4(0.0));
+    int sets = 0;
+    for (;; ++sets) {
+      const auto j = primitive.attributes.find("JOINTS_" + std::to_string(sets));
+      const auto w = primitive.attributes.find("WEIGHTS_" + std::to_string(sets));
+      if (j == primitive.attributes.end() && w == primitive.attributes.end()) break;
+      if (j == primitive.attributes.end() || w == primitive.attributes.end()) {
+        throw badInput(where, "has only one of JOINTS_" + std::to_string(sets) + " and WEIGHTS_" + std::to_string(sets));
+      }
+      const std::vector<float> index = reader.floats(j->second, gltf::Use::kJoints, 4);
+      const std::vector<float> weight = reader.floats(w->second, gltf::Use::kWeights, 4);
+      if (index.size() != 4 * blend.size() || weight.size() != 4 * blend.size()) {
+        throw badInput(where, "JOINTS_" + std::to_string(sets) + " or WEIGHTS_" + std::to_string(sets) + " count differs from POSITION count");
+      }
+      for (std::size_t i = 0; i < index.size(); ++i) {
+        if (weight[i] == 0.0f) continue;
+        if (index[i] >= float(joints.size())) {
+          throw badInput(path + ": accessors[" + std::to_string(j->second) + "]",
+                         "joint " + std::to_string(unsigned(index[i])) + " of vertex " + std::to_string(i / 4) +
+                             " is not below the skin's " + std::to_string(joints.size()) + " joints");
+        }
+        blend[i / 4] += double(weight[i]) * joints[std::size_t(index[i])];
+      }
+    }
+    if (sets == 0) throw badInput(where, "is skinned (its node names a skin) but has no JOINTS_0 and WEIGHTS_0");
+    Attribute* normal = nullptr;
+    for (Attribute& a : part.attributes) {
+      if (a.name == "normal" && a.components == 3) normal = &a;
+    }
+    for (std::size_t v = 0; v < blend.size(); ++v) {
+      part.positions[v] = glm::vec3(blend[v] * glm::dvec4(glm::dvec3(part.positions[v]), 1.0));
+      const glm::dmat3 linear(blend[v]);
+      if (!normal || !(std::fabs(glm::determinant(linear)) > 0.0)) continue;
+      float* n = normal->values.data() + 3 * v;
+      const glm::dvec3 moved = glm::transpose(glm::inverse(linear)) * glm::dvec3(n[0], n[1], n[2]);
+      for (int c = 0; c < 3; ++c) n[c] = float(moved[c]);  // appendMesh renormalises
+    }
+  }
+
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
     if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
     const tinygltf::Camera& camera = model.cameras[index];
@@ -173,15 +257,18 @@ struct Walker {
     if (node.camera >= 0 && !content.camera) readCamera(node.camera, world, where);
     if (node.mesh >= 0) {
       if (std::size_t(node.mesh) >= model.meshes.size()) throw badInput(where, "mesh index out of range");
+      const bool skinned = node.skin >= 0;  // then the joints place it, not the node
       const double det = glm::determinant(glm::dmat3(world));
-      if (!(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
+      if (!skinned && !(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
       const auto& primitives = model.meshes[node.mesh].primitives;
       const std::vector<double>& weights = node.weights.empty() ? model.meshes[node.mesh].weights : node.weights;
       for (std::size_t i = 0; i < primitives.size(); ++i) {
         const int mode = primitives[i].mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitives[i].mode;
         if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;  // points, lines
         const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
-        appendMesh(content.mesh, readPrimitive(primitives[i], weights, at), world);
+        Mesh part = readPrimitive(primitives[i], weights, at);
+        if (skinned) applySkin(node.skin, primitives[i], part, at);
+        appendMesh(content.mesh, part, skinned ? glm::dmat4(1.0) : world);
       }
     }
     for (int child : node.children) visit(child, world, depth + 1);
@@ -221,7 +308,7 @@ GltfContent loadGltf(const std::string& path) {
   if (!unread.empty()) throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + unread);
   gltf::decodeMeshopt(model, meshopt, path);
 
-  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}};
+  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}, {}};
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;

@@ -16,7 +16,7 @@ struct GltfContent {
 
 // Reads POSITION, NORMAL ("normal"), TEXCOORD_0 ("uv") and COLOR_0 ("color"); attributes that
 // not every primitive carries are dropped. Node transforms (matrix or TRS) are applied, and
-// morph targets at the weights in force. Sparse accessors, KHR_mesh_quantization and
+// morph targets at the weights in force, and skins as their joints stand. Sparse accessors, KHR_mesh_quantization and
 // EXT_meshopt_compression are read (docs/scene-file.md).
 // Triangle lists, strips and fans are read; points and lines are skipped (no surface).
 // A URI is never expanded, executed or fetched: only data: URIs and relative paths inside the

@@ -444,5 +444,64 @@ TEST(GltfLoader, MeshoptCompressedBufferViewsAreDecoded) {
   }
 }
 
+TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  const int normals = b.view(bytesOf<float>({0, 0, 1, 0, 0, 1, 0, 0, 1}));
+  // Vertex 0 on joint 0; vertex 1 half on each; vertex 2 on joint 1 (through the second set of
+  // four influences, JOINTS_1 / WEIGHTS_1).
+  const int joints0 = b.view(bytesOf<std::uint8_t>({0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0}));
+  const int weights0 = b.view(bytesOf<std::uint8_t>({255, 0, 0, 0, 128, 127, 0, 0, 0, 0, 0, 0}));
+  const int joints1 = b.view(bytesOf<std::uint16_t>({0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}));
+  const int weights1 = b.view(bytesOf<float>({0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}));
+  // Inverse bind matrices: joint 0 identity, joint 1 bound at y = 1 (a translation by -1).
+  const int bind = b.view(bytesOf<float>({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+                                          1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}));
+  b.accessor(denseVec3(base, 3));
+  b.accessor(denseVec3(normals, 3));
+  b.accessor(R"({"bufferView": )" + std::to_string(joints0) + R"(, "componentType": 5121, "count": 3, "type": "VEC4"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(weights0) + R"(, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC4"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(joints1) + R"(, "componentType": 5123, "count": 3, "type": "VEC4"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(weights1) + R"(, "componentType": 5126, "count": 3, "type": "VEC4"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(bind) + R"(, "componentType": 5126, "count": 2, "type": "MAT4"})");
+  const std::string primitive =
+      R"("attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 5})";
+  // Node 0 holds the mesh (its translation must not apply); nodes 1 and 2 are the joints, 2 a
+  // child of 1. `joint2` is node 2's transform.
+  auto file = [&](const std::string& joint2, const std::string& skin = R"({"joints": [1, 2], "inverseBindMatrices": 6})") {
+    std::string text = b.text(primitive, "", R"(, "skins": [)" + skin + "]", R"(, "skin": 0, "translation": [10, 0, 0])");
+    const std::string nodes = R"("nodes": [{"mesh": 0)";
+    const std::size_t at = text.find(nodes);
+    const std::size_t end = text.find("}]", at);
+    text.insert(end + 1, R"(, {"children": [2], "translation": [0, 0, 5]}, {)" + joint2 + "}");
+    return text;
+  };
+
+  // At the bind pose (joint 2 at y = 1 below joint 1) every vertex stays, moved only by joint 1's
+  // translation to z = 5, which both joints carry.
+  Mesh mesh = loadGltf(dir.write("bind.gltf", file(R"("translation": [0, 1, 0])"))).mesh;
+  expectPositions(mesh, {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}}, "bind pose");
+  // Joint 2 raised by 2: vertex 2 follows it, vertex 1 half of the way (its weights 128/255 and 127/255).
+  mesh = loadGltf(dir.write("raised.gltf", file(R"("translation": [0, 3, 0])"))).mesh;
+  expectPositions(mesh, {{0, 0, 5}, {1, float(2.0 * 127 / 255), 5}, {0, 3, 5}}, "joint raised");
+  // Joint 2 turned a quarter about x: vertex 2's normal turns with it.
+  mesh = loadGltf(dir.write("turned.gltf", file(R"("translation": [0, 1, 0], "rotation": [0.7071067811865476, 0, 0, 0.7071067811865476])"))).mesh;
+  const std::vector<float>& n = mesh.findAttribute("normal")->values;
+  EXPECT_NEAR(n[6], 0.0f, 1e-6f);
+  EXPECT_NEAR(n[7], -1.0f, 1e-6f);
+  EXPECT_NEAR(n[8], 0.0f, 1e-6f);
+  EXPECT_EQ(n[2], 1.0f) << "vertex 0 stays on joint 1, which does not turn";
+
+  testing::expectError([&] { loadGltf(dir.write("few.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1]})"))); },
+                       ExitCode::kBadInput, {"accessors[2]", "joint 1 of vertex 1 is not below the skin's 1 joints"},
+                       "joint out of range");
+  testing::expectError(
+      [&] { loadGltf(dir.write("bind.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1, 2, 0], "inverseBindMatrices": 6})"))); },
+      ExitCode::kBadInput, {"skins[0]", "fewer inverseBindMatrices than joints"}, "too few bind matrices");
+  testing::expectError([&] { loadGltf(dir.write("node.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1, 9]})"))); },
+                       ExitCode::kBadInput, {"skins[0]", "joint 1 names no node"}, "joint node");
+}
+
 }  // namespace
 }  // namespace rc
