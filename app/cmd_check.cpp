@@ -34,21 +34,6 @@ struct CheckArgs {
   Thresholds thresholds;
 };
 
-// Output file stem of a scene: a file's own stem ("../data/spot.obj" -> "spot"), a built-in
-// scene's spec made safe ("blob:tris=1000" -> "blob_tris-1000"); "-2", "-3"... on collisions.
-std::string fileStem(const std::string& scene, std::set<std::string>& used) {
-  const fs::path path(scene);
-  const std::string source = path.has_extension() ? path.stem().string() : scene;
-  std::string stem;
-  for (char c : source) {
-    const bool plain = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-    stem += plain ? c : (c == '=' ? '-' : '_');
-  }
-  std::string unique = stem;
-  for (int n = 2; !used.insert(unique).second; ++n) unique = stem + "-" + std::to_string(n);
-  return unique;
-}
-
 // The three pictures of a scene, made once and written to every folder that wants them.
 struct ScenePictures {
   Rgb8Image raster, reference, heatmap;

@@ -14,5 +14,6 @@ void registerRender(CLI::App& root, Action& action);
 void registerCompare(CLI::App& root, Action& action);
 void registerCheck(CLI::App& root, Action& action);
 void registerBench(CLI::App& root, Action& action);
+void registerExport(CLI::App& root, Action& action);
 
 }  // namespace rc::app

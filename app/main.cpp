@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rc::app::registerCompare(root, action);
   rc::app::registerCheck(root, action);
   rc::app::registerBench(root, action);
+  rc::app::registerExport(root, action);
   try {
     root.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -87,6 +87,10 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
   addChoice<std::string>(command, "--embree-isa", s.reference.isa,
                          {{"sse2", "sse2"}, {"sse4.2", "sse4.2"}, {"avx", "avx"}, {"avx2", "avx2"}, {"avx512", "avx512"}},
                          "Embree instruction set, pinned so results do not change with the CPU");
+  addSceneOptions(command, s);
+}
+
+void addSceneOptions(CLI::App* command, RenderSettings& s) {
   command->add_option("--size", s.size, "image size WxH, overriding the scene's (e.g. 1920x1080)");
   command->add_option("--eye", s.eye, "camera position x,y,z, overriding the scene's");
   command->add_option("--target", s.target, "point the camera looks at, x,y,z");
@@ -327,5 +331,18 @@ long long nowNanoseconds() {
 }
 
 double millisecondsSince(long long start) { return double(nowNanoseconds() - start) * 1e-6; }
+
+std::string fileStem(const std::string& scene, std::set<std::string>& used) {
+  const fs::path path(scene);
+  const std::string source = path.has_extension() ? path.stem().string() : scene;
+  std::string stem;
+  for (char c : source) {
+    const bool plain = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+    stem += plain ? c : (c == '=' ? '-' : '_');
+  }
+  std::string unique = stem;
+  for (int n = 2; !used.insert(unique).second; ++n) unique = stem + "-" + std::to_string(n);
+  return unique;
+}
 
 }  // namespace rc::app

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +63,9 @@ void addChoice(CLI::App* command, const std::string& name, Enum& target,
 }
 
 void addRenderOptions(CLI::App* command, RenderSettings& settings);
+// The options that change the scene itself (camera, size, attributes, limits), which
+// addRenderOptions includes; for commands that render nothing.
+void addSceneOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
 
 // Propagates the thread count and checks the combination; throws usageError.
@@ -136,6 +140,10 @@ class WrittenOutputs {
   OutputBatch batch_;
   std::string standardOutput_;  // the document for "-", if any
 };
+
+// Output file stem of a scene: a file's own stem ("../data/spot.obj" -> "spot"), a built-in
+// scene's spec made safe ("blob:tris=1000" -> "blob_tris-1000"); "-2", "-3"... on collisions.
+std::string fileStem(const std::string& scene, std::set<std::string>& used);
 
 // Milliseconds elapsed since `start` (steady clock).
 double millisecondsSince(long long startNanoseconds);

@@ -13,7 +13,9 @@ namespace {
 // the same geometry, so such meshes are refused here.
 constexpr float kMaxCoordinate = 1e18f;
 
-bool validName(const std::string& name) {
+}  // namespace
+
+bool validAttributeName(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;
   for (char c : name) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -23,7 +25,6 @@ bool validName(const std::string& name) {
   return true;
 }
 
-}  // namespace
 
 const Attribute* Mesh::findAttribute(const std::string& name) const {
   for (const Attribute& a : attributes) {
@@ -109,7 +110,7 @@ void validateMesh(const Mesh& mesh, const std::string& where) {
   for (std::size_t a = 0; a < mesh.attributes.size(); ++a) {
     const Attribute& attr = mesh.attributes[a];
     const std::string at = where + ": attribute '" + attr.name + "'";
-    if (!validName(attr.name)) throw badInput(at, "name must be 1-64 of [A-Za-z0-9_]");
+    if (!validAttributeName(attr.name)) throw badInput(at, "name must be 1-64 of [A-Za-z0-9_]");
     for (std::size_t b = 0; b < a; ++b) {
       if (mesh.attributes[b].name == attr.name) throw badInput(at, "declared twice");
     }

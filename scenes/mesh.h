@@ -33,6 +33,9 @@ struct Mesh {
   Attribute& addAttribute(const std::string& name, int components);  // sized for the vertices
 };
 
+// 1 to 64 of [A-Za-z0-9_]: what an attribute's name may be, since it names EXR channels.
+bool validAttributeName(const std::string& name);
+
 // Appends `part` to `into`, its positions mapped by `worldFromPart` (in double, rounded once)
 // and an attribute named "normal" with 3 components by its inverse transpose (renormalised).
 // Only attributes carried by both (same name and component count) survive: a merged mesh never

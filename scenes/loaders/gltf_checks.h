@@ -20,7 +20,7 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path);
 void checkUris(const std::string& json, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.
-enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix };
+enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom };
 
 // Bounds-checked accessor reads (64-bit arithmetic throughout). An accessor without a
 // bufferView holds zeros; sparse storage then replaces the elements it names (indices strictly

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -114,6 +115,25 @@ struct Walker {
       }
       morph(primitive, weights, spec.gltf, spec.use, components, values, where);
       part.attributes.push_back({spec.name, components, std::move(values)});
+    }
+    // Application-specific attributes ("_name", as rastercheck export writes them) whose name
+    // can be a channel name and is not taken, in the order of their accessors (the order they
+    // were written in).
+    std::vector<std::pair<int, std::string>> custom;
+    for (const auto& [semantic, index] : attrs) custom.emplace_back(index, semantic);
+    std::sort(custom.begin(), custom.end());
+    for (const auto& [index, semantic] : custom) {
+      const std::string name = semantic.substr(1);
+      if (semantic[0] != '_' || !validAttributeName(name) || part.findAttribute(name)) continue;
+      const int components = index >= 0 && std::size_t(index) < model.accessors.size()
+                                 ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(index)].type))
+                                 : 1;
+      if (components < 1 || components > 4) continue;
+      std::vector<float> values = reader.floats(index, gltf::Use::kCustom, components);
+      if (values.size() != part.positions.size() * std::size_t(components)) {
+        throw badInput(where, semantic + " count differs from POSITION count");
+      }
+      part.attributes.push_back({name, components, std::move(values)});
     }
     std::vector<unsigned> order;
     if (primitive.indices >= 0) {
@@ -222,6 +242,55 @@ struct Walker {
     }
   }
 
+  // The exact camera `rastercheck export` keeps in a camera's extras, if they hold one that
+  // agrees with the pose and field of view the glTF camera gives (an edited file's node or yfov
+  // wins over stale extras).
+  static std::optional<CameraSpec> exactCamera(const tinygltf::Value& extras, const CameraSpec& gltf) {
+    if (!extras.IsObject() || !extras.Has("rastercheck_camera")) return std::nullopt;
+    const tinygltf::Value& e = extras.Get("rastercheck_camera");
+    auto number = [&](const char* key, double& out) {
+      if (!e.Has(key) || !e.Get(key).IsNumber()) return false;
+      out = e.Get(key).GetNumberAsDouble();
+      return true;
+    };
+    auto vector = [&](const char* key, glm::dvec3& out) {
+      if (!e.Has(key) || !e.Get(key).IsArray() || e.Get(key).ArrayLen() != 3) return false;
+      for (int i = 0; i < 3; ++i) {
+        if (!e.Get(key).Get(i).IsNumber()) return false;
+        out[i] = e.Get(key).Get(i).GetNumberAsDouble();
+      }
+      return true;
+    };
+    CameraSpec spec = gltf;
+    double width = 0, height = 0;
+    if (!e.IsObject() || !vector("eye", spec.eye) || !vector("target", spec.target) || !vector("up", spec.up) ||
+        !number("fov_y_degrees", spec.fovYDegrees) || !number("near", spec.zNear) || !number("width", width) ||
+        !number("height", height)) {
+      return std::nullopt;
+    }
+    spec.zFar = std::numeric_limits<double>::infinity();  // null or absent: infinite
+    if (e.Has("far") && e.Get("far").IsNumber()) number("far", spec.zFar);
+    if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384 && width == std::floor(width) &&
+          height == std::floor(height))) {
+      return std::nullopt;
+    }
+    spec.width = int(width);
+    spec.height = int(height);
+    try {
+      Camera(spec, "camera");
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+    const glm::dvec3 forward = glm::normalize(spec.target - spec.eye), given = glm::normalize(gltf.target - gltf.eye);
+    const double scale = 1.0 + glm::length(gltf.eye);
+    const bool agrees = glm::length(spec.eye - gltf.eye) <= 1e-9 * scale && glm::length(forward - given) <= 1e-9 &&
+                        std::fabs(spec.fovYDegrees - gltf.fovYDegrees) <= 1e-9 * gltf.fovYDegrees &&
+                        std::fabs(spec.zNear - gltf.zNear) <= 1e-12 * gltf.zNear &&
+                        (std::isinf(spec.zFar) ? std::isinf(gltf.zFar) : std::fabs(spec.zFar - gltf.zFar) <= 1e-12 * gltf.zFar);
+    if (!agrees) return std::nullopt;
+    return spec;
+  }
+
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
     if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
     const tinygltf::Camera& camera = model.cameras[index];
@@ -243,6 +312,7 @@ struct Walker {
                      ? int(std::clamp(std::lround(600.0 * p.aspectRatio), 1L, 16384L))
                      : 800;
     Camera(spec, at);  // validates now, naming the camera
+    if (const std::optional<CameraSpec> exact = exactCamera(camera.extras, spec)) spec = *exact;
     content.camera = spec;
   }
 

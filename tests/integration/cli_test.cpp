@@ -21,10 +21,12 @@
 #include <vector>
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
+
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
+#include "scenes/registry.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
@@ -875,3 +877,55 @@ TEST(Cli, ImageIntoATerminalIsRefused) {
 }
 
 }  // namespace
+
+// export: the hard cases as glTF files, which check reads back (with their exact cameras, so
+// the same figures) and another reader, gltfpack, accepts; bad requests are refused before any
+// file or folder appears.
+TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
+  const rc::testing::TempDir temp;
+  const std::string dir = (temp.path() / "exported").string();
+  const CliRun exported = run("export hard --out " + dir + " --format glb");
+  ASSERT_EQ(exported.exitCode, 0) << exported.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), std::ptrdiff_t(rc::hardCaseSpecs().size()));
+  EXPECT_NE(exported.output.find("attributes: 48 triangles, 4 attributes, 160x120 -> " + dir + "/attributes.glb"), std::string::npos)
+      << exported.output;
+  const std::string single = (temp.path() / "floor.gltf").string();
+  ASSERT_EQ(run("export floor -o " + single).exitCode, 0);
+  EXPECT_EQ(rc::testing::readFile(dir + "/edges.glb").substr(0, 4), "glTF");
+
+  // The same figures as the built-in scenes: the same mesh under the same camera.
+  const CliRun builtin = run("check edges attributes floor -q");
+  const CliRun files = run("check " + dir + "/edges.glb " + dir + "/attributes.glb " + single + " -q");
+  ASSERT_EQ(files.exitCode, 0) << files.output;
+  for (const char* name : {"edges", "attributes", "floor"}) {
+    const std::size_t a = builtin.output.find(std::string("\n") + name + " "), b = files.output.find(std::string("/") + name + ".gl");
+    ASSERT_NE(a, std::string::npos) << builtin.output;
+    ASSERT_NE(b, std::string::npos) << files.output;
+    // triangles, size, verdict and the four error figures (the two times differ)
+    auto columns = [](const std::string& text, std::size_t at) {
+      std::istringstream line(text.substr(at, text.find('\n', at + 1) - at));
+      std::string scene, word, kept;
+      line >> scene;
+      for (int i = 0; i < 7 && line >> word; ++i) kept += word + " ";
+      return kept;
+    };
+    EXPECT_EQ(columns(files.output, b), columns(builtin.output, a + 1)) << name;
+  }
+  if (rc::testing::runCommand("gltfpack -h").output.find("gltfpack") != std::string::npos) {
+    const rc::testing::CommandResult packed =
+        rc::testing::runCommand("gltfpack -noq -i " + dir + "/attributes.glb -o " + (temp.path() / "re.glb").string());
+    EXPECT_EQ(packed.exitCode, 0) << packed.output;
+  }
+
+  const std::string fresh = (temp.path() / "fresh").string();
+  for (const auto& [args, message] :
+       {std::pair{"export cube floor -o " + fresh + "/x.gltf", std::string("-o writes one scene, but 2 are given")},
+        {"export cube -o " + fresh + "/x.obj", "name a .gltf or .glb file"},
+        {"export cube", "give -o FILE (one scene) or --out DIR"},
+        {"export cube nosuch --out " + fresh, "nosuch"}}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(fresh)) << args;
+  }
+}

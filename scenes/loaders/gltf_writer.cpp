@@ -1,0 +1,138 @@
+// glTF 2.0 output through nlohmann-json: the buffer, its views and accessors, one mesh, one camera.
+#include "scenes/loaders/gltf_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace rc {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+std::string base64(const std::string& in) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    std::uint32_t n = std::uint32_t(std::uint8_t(in[i])) << 16;
+    if (i + 1 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 1])) << 8;
+    if (i + 2 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 2]));
+    out += digits[(n >> 18) & 63];
+    out += digits[(n >> 12) & 63];
+    out += i + 1 < in.size() ? digits[(n >> 6) & 63] : '=';
+    out += i + 2 < in.size() ? digits[n & 63] : '=';
+  }
+  return out;
+}
+
+const char* typeOf(int components) {
+  static const char* types[] = {"SCALAR", "VEC2", "VEC3", "VEC4"};
+  return types[std::clamp(components, 1, 4) - 1];
+}
+
+// glTF's name for an attribute: the three it defines, else application-specific ("_name").
+std::string semanticOf(const Attribute& a) {
+  if (a.name == "normal" && a.components == 3) return "NORMAL";
+  if (a.name == "uv" && a.components == 2) return "TEXCOORD_0";
+  if (a.name == "color" && (a.components == 3 || a.components == 4)) return "COLOR_0";
+  return "_" + a.name;
+}
+
+json vec3(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+struct Document {
+  std::string bin;
+  json views = json::array(), accessors = json::array();
+
+  // Appends the bytes as a buffer view (4-byte aligned) and an accessor over it.
+  int add(const void* data, std::size_t bytes, json accessor, int target) {
+    while (bin.size() % 4) bin += '\0';
+    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}, {"target", target}});
+    bin.append(static_cast<const char*>(data), bytes);
+    accessor["bufferView"] = views.size() - 1;
+    accessors.push_back(std::move(accessor));
+    return int(accessors.size()) - 1;
+  }
+};
+
+}  // namespace
+
+std::string gltfFromScene(const Scene& scene, bool binary) {
+  const Mesh& mesh = scene.mesh;
+  Document d;
+  glm::vec3 low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
+  for (const glm::vec3& p : mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
+  json attributes;
+  attributes["POSITION"] =
+      d.add(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3),
+            {{"componentType", kFloat}, {"count", mesh.positions.size()}, {"type", "VEC3"},
+             {"min", {low.x, low.y, low.z}}, {"max", {high.x, high.y, high.z}}},
+            kArrayBuffer);
+  for (const Attribute& a : mesh.attributes) {
+    attributes[semanticOf(a)] = d.add(a.values.data(), a.values.size() * sizeof(float),
+                                      {{"componentType", kFloat}, {"count", mesh.positions.size()}, {"type", typeOf(a.components)}},
+                                      kArrayBuffer);
+  }
+  const int indices = d.add(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3),
+                            {{"componentType", kUnsignedInt}, {"count", 3 * mesh.triangles.size()}, {"type", "SCALAR"}},
+                            kElementArrayBuffer);
+
+  const Camera& camera = scene.camera;
+  const CameraSpec& spec = camera.spec();
+  json matrix = json::array();  // column-major: right, up, -forward, eye
+  for (const glm::dvec3& column : {camera.right(), camera.up(), -camera.forward()}) {
+    matrix.insert(matrix.end(), {column.x, column.y, column.z, 0.0});
+  }
+  matrix.insert(matrix.end(), {spec.eye.x, spec.eye.y, spec.eye.z, 1.0});
+  json perspective = {{"yfov", spec.fovYDegrees * M_PI / 180.0},
+                      {"aspectRatio", double(spec.width) / double(spec.height)},
+                      {"znear", spec.zNear}};
+  if (std::isfinite(spec.zFar)) perspective["zfar"] = spec.zFar;
+  const json exact = {{"eye", vec3(spec.eye)},
+                      {"target", vec3(spec.target)},
+                      {"up", vec3(spec.up)},
+                      {"fov_y_degrees", spec.fovYDegrees},
+                      {"near", spec.zNear},
+                      {"far", std::isfinite(spec.zFar) ? json(spec.zFar) : json(nullptr)},
+                      {"width", spec.width},
+                      {"height", spec.height}};
+
+  json buffer = {{"byteLength", d.bin.size()}};
+  if (!binary) buffer["uri"] = "data:application/octet-stream;base64," + base64(d.bin);
+  const json doc = {
+      {"asset", {{"version", "2.0"}, {"generator", "rastercheck " RASTERCHECK_VERSION " (rastercheck export)"}}},
+      {"scene", 0},
+      {"scenes", {{{"name", scene.name}, {"nodes", {0, 1}}}}},
+      {"nodes", {{{"name", scene.name}, {"mesh", 0}}, {{"name", "camera"}, {"camera", 0}, {"matrix", matrix}}}},
+      {"meshes", {{{"name", scene.name}, {"primitives", {{{"attributes", attributes}, {"indices", indices}, {"mode", 4}}}}}}},
+      {"cameras", {{{"type", "perspective"}, {"perspective", perspective}, {"extras", {{"rastercheck_camera", exact}}}}}},
+      {"buffers", {buffer}},
+      {"bufferViews", d.views},
+      {"accessors", d.accessors}};
+  // Names may hold any bytes a file name does: invalid UTF-8 becomes U+FFFD.
+  std::string text = doc.dump(binary ? -1 : 1, ' ', false, json::error_handler_t::replace);
+  if (!binary) return text + "\n";
+
+  while (text.size() % 4) text += ' ';
+  std::string bin = d.bin;
+  while (bin.size() % 4) bin += '\0';
+  const std::uint64_t total = 12 + 8 + std::uint64_t(text.size()) + 8 + bin.size();
+  if (total > 0xFFFFFFFFu) throw badInput(scene.name, "is too large for a GLB file (4 GiB at most); write a .gltf");
+  const std::uint32_t header[3] = {0x46546C67u, 2, std::uint32_t(total)};
+  const std::uint32_t jsonChunk[2] = {std::uint32_t(text.size()), 0x4E4F534Au};
+  const std::uint32_t binChunk[2] = {std::uint32_t(bin.size()), 0x004E4942u};
+  std::string out(reinterpret_cast<const char*>(header), sizeof header);
+  out.append(reinterpret_cast<const char*>(jsonChunk), sizeof jsonChunk).append(text);
+  out.append(reinterpret_cast<const char*>(binChunk), sizeof binChunk).append(bin);
+  return out;
+}
+
+}  // namespace rc
