@@ -203,38 +203,42 @@ struct Walker {
       joints.push_back(worldOf(node) * bind);
       if (!finiteMatrix(joints.back())) throw badInput(at, "joint " + std::to_string(j) + "'s transform is not finite");
     }
-    std::vector<glm::dmat4> blend(part.positions.size(), glm::dmat4(0.0));
-    int sets = 0;
-    for (;; ++sets) {
-      const auto j = primitive.attributes.find("JOINTS_" + std::to_string(sets));
-      const auto w = primitive.attributes.find("WEIGHTS_" + std::to_string(sets));
+    const std::size_t vertices = part.positions.size();
+    std::vector<std::vector<float>> indices, weights;  // per set of four influences
+    for (int set = 0;; ++set) {
+      const auto j = primitive.attributes.find("JOINTS_" + std::to_string(set));
+      const auto w = primitive.attributes.find("WEIGHTS_" + std::to_string(set));
       if (j == primitive.attributes.end() && w == primitive.attributes.end()) break;
       if (j == primitive.attributes.end() || w == primitive.attributes.end()) {
-        throw badInput(where, "has only one of JOINTS_" + std::to_string(sets) + " and WEIGHTS_" + std::to_string(sets));
+        throw badInput(where, "has only one of JOINTS_" + std::to_string(set) + " and WEIGHTS_" + std::to_string(set));
       }
-      const std::vector<float> index = reader.floats(j->second, gltf::Use::kJoints, 4);
-      const std::vector<float> weight = reader.floats(w->second, gltf::Use::kWeights, 4);
-      if (index.size() != 4 * blend.size() || weight.size() != 4 * blend.size()) {
-        throw badInput(where, "JOINTS_" + std::to_string(sets) + " or WEIGHTS_" + std::to_string(sets) + " count differs from POSITION count");
+      indices.push_back(reader.floats(j->second, gltf::Use::kJoints, 4));
+      weights.push_back(reader.floats(w->second, gltf::Use::kWeights, 4));
+      if (indices.back().size() != 4 * vertices || weights.back().size() != 4 * vertices) {
+        throw badInput(where, "JOINTS_" + std::to_string(set) + " or WEIGHTS_" + std::to_string(set) + " count differs from POSITION count");
       }
-      for (std::size_t i = 0; i < index.size(); ++i) {
-        if (weight[i] == 0.0f) continue;
-        if (index[i] >= float(joints.size())) {
+      for (std::size_t i = 0; i < 4 * vertices; ++i) {
+        if (weights.back()[i] != 0.0f && indices.back()[i] >= float(joints.size())) {
           throw badInput(path + ": accessors[" + std::to_string(j->second) + "]",
-                         "joint " + std::to_string(unsigned(index[i])) + " of vertex " + std::to_string(i / 4) +
+                         "joint " + std::to_string(unsigned(indices.back()[i])) + " of vertex " + std::to_string(i / 4) +
                              " is not below the skin's " + std::to_string(joints.size()) + " joints");
         }
-        blend[i / 4] += double(weight[i]) * joints[std::size_t(index[i])];
       }
     }
-    if (sets == 0) throw badInput(where, "is skinned (its node names a skin) but has no JOINTS_0 and WEIGHTS_0");
+    if (indices.empty()) throw badInput(where, "is skinned (its node names a skin) but has no JOINTS_0 and WEIGHTS_0");
     Attribute* normal = nullptr;
     for (Attribute& a : part.attributes) {
       if (a.name == "normal" && a.components == 3) normal = &a;
     }
-    for (std::size_t v = 0; v < blend.size(); ++v) {
-      part.positions[v] = glm::vec3(blend[v] * glm::dvec4(glm::dvec3(part.positions[v]), 1.0));
-      const glm::dmat3 linear(blend[v]);
+    for (std::size_t v = 0; v < vertices; ++v) {
+      glm::dmat4 blend(0.0);
+      for (std::size_t set = 0; set < indices.size(); ++set) {
+        for (std::size_t k = 4 * v; k < 4 * v + 4; ++k) {
+          if (weights[set][k] != 0.0f) blend += double(weights[set][k]) * joints[std::size_t(indices[set][k])];
+        }
+      }
+      part.positions[v] = glm::vec3(blend * glm::dvec4(glm::dvec3(part.positions[v]), 1.0));
+      const glm::dmat3 linear(blend);
       if (!normal || !(std::fabs(glm::determinant(linear)) > 0.0)) continue;
       float* n = normal->values.data() + 3 * v;
       const glm::dvec3 moved = glm::transpose(glm::inverse(linear)) * glm::dvec3(n[0], n[1], n[2]);
