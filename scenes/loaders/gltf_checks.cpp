@@ -106,6 +106,7 @@ const char* useName(Use use) {
     case Use::kWeights: return "WEIGHTS";
     case Use::kMatrix: return "inverseBindMatrices";
     case Use::kCustom: return "an application-specific attribute";
+    case Use::kRotation: return "ROTATION";
   }
   return "";
 }
@@ -125,6 +126,7 @@ bool allowedType(Use use, bool displacement, int type, bool normalized, bool qua
     case Use::kWeights: return normalized && !isSigned(type);
     case Use::kMatrix: return false;
     case Use::kCustom: return normalized;  // any normalised 8- or 16-bit integer
+    case Use::kRotation: return normalized && isSigned(type);
     case Use::kPosition:  // KHR_mesh_quantization: any 8- or 16-bit integer; signed ones for displacements
       return quantized && (!displacement || isSigned(type));
     case Use::kNormal:  // KHR_mesh_quantization: signed normalised

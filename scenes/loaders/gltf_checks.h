@@ -20,7 +20,9 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path);
 void checkUris(const std::string& json, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.
-enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom };
+// kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
+// float or normalised signed integers (EXT_mesh_gpu_instancing's ROTATION).
+enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom, kRotation };
 
 // Bounds-checked accessor reads (64-bit arithmetic throughout). An accessor without a
 // bufferView holds zeros; sparse storage then replaces the elements it names (indices strictly

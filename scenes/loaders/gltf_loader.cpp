@@ -20,6 +20,9 @@ namespace rc {
 namespace {
 
 constexpr int kMaxNodeDepth = 256;
+// The most triangles one node's instances (EXT_mesh_gpu_instancing) may make: a few instance
+// transforms in a small file could otherwise ask for any amount of memory.
+constexpr std::size_t kMaxInstancedTriangles = std::size_t(1) << 26;
 
 glm::dmat4 localMatrix(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -49,12 +52,12 @@ bool finiteMatrix(const glm::dmat4& m) {
   return true;
 }
 
-// Extensions a file may require that rastercheck can honour: KHR_mesh_quantization and
-// EXT_meshopt_compression are read; the
+// Extensions a file may require that rastercheck can honour: KHR_mesh_quantization,
+// EXT_meshopt_compression and EXT_mesh_gpu_instancing are read; the
 // others concern materials, textures and lights, which rastercheck never uses (it interpolates
 // the stored TEXCOORD_0, before any texture transform).
 bool honouredExtension(const std::string& e) {
-  return e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression" || e == "KHR_texture_transform" || e == "KHR_texture_basisu" ||
+  return e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression" || e == "EXT_mesh_gpu_instancing" || e == "KHR_texture_transform" || e == "KHR_texture_basisu" ||
          e == "EXT_texture_webp" || e == "EXT_texture_avif" || e == "KHR_lights_punctual" || e.rfind("KHR_materials_", 0) == 0;
 }
 
@@ -295,6 +298,54 @@ struct Walker {
     return spec;
   }
 
+  // EXT_mesh_gpu_instancing: the node's mesh drawn once per instance, at the node's world
+  // transform times the instance's translation, rotation and scale; without it, once.
+  std::vector<glm::dmat4> instancesOf(const tinygltf::Node& node, const glm::dmat4& world, std::size_t triangles,
+                                      const std::string& where) const {
+    const auto it = node.extensions.find("EXT_mesh_gpu_instancing");
+    if (it == node.extensions.end()) return {world};
+    const std::string at = where + ": extensions/EXT_mesh_gpu_instancing";
+    const tinygltf::Value& e = it->second;
+    if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject()) throw badInput(at, "has no attributes object");
+    const tinygltf::Value& attributes = e.Get("attributes");
+    std::vector<float> values[3];  // translation, rotation, scale
+    const struct { const char* name; gltf::Use use; int components; } kFields[] = {
+        {"TRANSLATION", gltf::Use::kMatrix, 3}, {"ROTATION", gltf::Use::kRotation, 4}, {"SCALE", gltf::Use::kMatrix, 3}};
+    std::size_t count = 0;
+    bool any = false;
+    for (int f = 0; f < 3; ++f) {
+      if (!attributes.Has(kFields[f].name)) continue;
+      const tinygltf::Value& index = attributes.Get(kFields[f].name);
+      if (!index.IsNumber()) throw badInput(at + "/attributes/" + kFields[f].name, "is not an accessor index");
+      values[f] = reader.floats(index.GetNumberAsInt(), kFields[f].use, kFields[f].components);
+      const std::size_t n = values[f].size() / std::size_t(kFields[f].components);
+      if (any && n != count) throw badInput(at, std::string(kFields[f].name) + " has " + std::to_string(n) + " instances, not " + std::to_string(count));
+      count = n;
+      any = true;
+    }
+    if (!any) throw badInput(at, "has none of TRANSLATION, ROTATION and SCALE");
+    if (count * std::max<std::size_t>(triangles, 1) > kMaxInstancedTriangles) {
+      throw badInput(at, std::to_string(count) + " instances of " + std::to_string(triangles) + " triangles are more than " +
+                             std::to_string(kMaxInstancedTriangles) + " triangles");
+    }
+    std::vector<glm::dmat4> matrices;
+    for (std::size_t i = 0; i < count; ++i) {
+      glm::dmat4 m = world;
+      if (!values[0].empty()) m = glm::translate(m, glm::dvec3(values[0][3 * i], values[0][3 * i + 1], values[0][3 * i + 2]));
+      if (!values[1].empty()) {
+        const glm::dquat q(values[1][4 * i + 3], values[1][4 * i], values[1][4 * i + 1], values[1][4 * i + 2]);
+        if (!(glm::length(q) > 0.0)) throw badInput(at, "ROTATION of instance " + std::to_string(i) + " is zero");
+        m *= glm::mat4_cast(glm::normalize(q));
+      }
+      if (!values[2].empty()) m = glm::scale(m, glm::dvec3(values[2][3 * i], values[2][3 * i + 1], values[2][3 * i + 2]));
+      if (!finiteMatrix(m) || !(std::fabs(glm::determinant(glm::dmat3(m))) > 0.0)) {
+        throw badInput(at, "instance " + std::to_string(i) + "'s transform is not finite and invertible");
+      }
+      matrices.push_back(m);
+    }
+    return matrices;
+  }
+
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
     if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
     const tinygltf::Camera& camera = model.cameras[index];
@@ -336,13 +387,20 @@ struct Walker {
       if (!skinned && !(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
       const auto& primitives = model.meshes[node.mesh].primitives;
       const std::vector<double>& weights = node.weights.empty() ? model.meshes[node.mesh].weights : node.weights;
+      std::vector<Mesh> parts;
+      std::size_t triangles = 0;
       for (std::size_t i = 0; i < primitives.size(); ++i) {
         const int mode = primitives[i].mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitives[i].mode;
         if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;  // points, lines
         const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
-        Mesh part = readPrimitive(primitives[i], weights, at);
-        if (skinned) applySkin(node.skin, primitives[i], part, at);
-        appendMesh(content.mesh, part, skinned ? glm::dmat4(1.0) : world);
+        parts.push_back(readPrimitive(primitives[i], weights, at));
+        if (skinned) applySkin(node.skin, primitives[i], parts.back(), at);
+        triangles += parts.back().triangleCount();
+      }
+      // A skinned mesh is placed by its joints alone (and is not instanced).
+      const std::vector<glm::dmat4> placements = skinned ? std::vector<glm::dmat4>{glm::dmat4(1.0)} : instancesOf(node, world, triangles, where);
+      for (const glm::dmat4& m : placements) {
+        for (const Mesh& part : parts) appendMesh(content.mesh, part, m);
       }
     }
     for (int child : node.children) visit(child, world, depth + 1);

@@ -353,6 +353,36 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
                        ExitCode::kBadInput, {"meshes[0].primitives[0].targets[1]", "TEXCOORD_0 count differs"}, "bad target");
 }
 
+TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  const int translations = b.view(bytesOf<float>({0, 0, 0, 10, 0, 0}));
+  // Identity, and a quarter turn about z in normalised SHORTs (23170 / 32767 = 0.7071).
+  const int rotations = b.view(bytesOf<std::int16_t>({0, 0, 0, 32767, 0, 0, 23170, 23170}));
+  const int scales = b.view(bytesOf<float>({1, 1, 1, 2, 2, 2}));
+  b.accessor(denseVec3(base, 3));
+  b.accessor(denseVec3(translations, 2));
+  b.accessor(R"({"bufferView": )" + std::to_string(rotations) + R"(, "componentType": 5122, "normalized": true, "count": 2, "type": "VEC4"})");
+  b.accessor(denseVec3(scales, 2));
+  const std::string instancing =
+      R"(, "translation": [0, 0, 5], "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 1, "ROTATION": 2, "SCALE": 3}}})";
+  const std::string required = R"(, "extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"])";
+  const Mesh mesh = loadGltf(dir.write("instances.gltf", b.text(R"("attributes": {"POSITION": 0})", "", required, instancing))).mesh;
+  ASSERT_EQ(mesh.triangleCount(), 2u);
+  ASSERT_EQ(mesh.positions.size(), 6u);
+  const glm::vec3 expected[6] = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {10, 0, 5}, {10, 2, 5}, {8, 0, 5}};
+  for (int i = 0; i < 6; ++i) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mesh.positions[i][c], expected[i][c], 1e-5f) << "vertex " << i << " axis " << c;
+  }
+  // Instances of different counts are refused.
+  GltfBuilder uneven = b;
+  uneven.accessors[3] = denseVec3(scales, 1);
+  testing::expectError(
+      [&] { loadGltf(dir.write("uneven.gltf", uneven.text(R"("attributes": {"POSITION": 0})", "", required, instancing))); },
+      ExitCode::kBadInput, {"nodes[0]: extensions/EXT_mesh_gpu_instancing", "SCALE has 1 instances, not 2"}, "uneven");
+}
+
 // A glTF of two triangles whose buffer views are compressed with meshoptimizer's encoders (as
 // gltfpack -c writes them), the uncompressed views in a fallback buffer that holds no data.
 // `edit` changes the JSON document before it is written.
