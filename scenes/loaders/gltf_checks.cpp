@@ -99,8 +99,8 @@ const char* useName(Use use) {
   switch (use) {
     case Use::kPosition: return "POSITION";
     case Use::kNormal: return "NORMAL";
-    case Use::kTexcoord: return "TEXCOORD_0";
-    case Use::kColor: return "COLOR_0";
+    case Use::kTexcoord: return "TEXCOORD_n";
+    case Use::kColor: return "COLOR_n";
     case Use::kIndices: return "indices";
     case Use::kJoints: return "JOINTS";
     case Use::kWeights: return "WEIGHTS";

@@ -20,6 +20,8 @@ namespace rc {
 namespace {
 
 constexpr int kMaxNodeDepth = 256;
+// TEXCOORD_n and COLOR_n sets read (n < 8): "uv", "uv1"..., "color", "color1"...
+constexpr int kMaxSets = 8;
 // The most triangles one node's instances (EXT_mesh_gpu_instancing) may make: a few instance
 // transforms in a small file could otherwise ask for any amount of memory.
 constexpr std::size_t kMaxInstancedTriangles = std::size_t(1) << 26;
@@ -101,11 +103,18 @@ struct Walker {
     std::vector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3);
     morph(primitive, weights, "POSITION", gltf::Use::kPosition, 3, p, where);
     for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
-    const struct { const char* gltf; const char* name; int components[2]; gltf::Use use; } kAttributes[] = {
-        {"NORMAL", "normal", {3, 3}, gltf::Use::kNormal},
-        {"TEXCOORD_0", "uv", {2, 2}, gltf::Use::kTexcoord},
-        {"COLOR_0", "color", {3, 4}, gltf::Use::kColor}};
-    for (const auto& spec : kAttributes) {
+    struct Known {
+      std::string gltf, name;
+      int components[2];
+      gltf::Use use;
+    };
+    std::vector<Known> known = {{"NORMAL", "normal", {3, 3}, gltf::Use::kNormal}};
+    for (int set = 0; set < kMaxSets; ++set) {  // uv, uv1, ..., color, color1, ...
+      const std::string suffix = set ? std::to_string(set) : "";
+      known.push_back({"TEXCOORD_" + std::to_string(set), "uv" + suffix, {2, 2}, gltf::Use::kTexcoord});
+      known.push_back({"COLOR_" + std::to_string(set), "color" + suffix, {3, 4}, gltf::Use::kColor});
+    }
+    for (const Known& spec : known) {
       auto it = attrs.find(spec.gltf);
       if (it == attrs.end()) continue;
       const int n = (it->second >= 0 && std::size_t(it->second) < model.accessors.size())
@@ -114,9 +123,9 @@ struct Walker {
       const int components = (n == spec.components[1]) ? n : spec.components[0];
       std::vector<float> values = reader.floats(it->second, spec.use, components);
       if (values.size() != part.positions.size() * std::size_t(components)) {
-        throw badInput(where, std::string(spec.gltf) + " count differs from POSITION count");
+        throw badInput(where, spec.gltf + " count differs from POSITION count");
       }
-      morph(primitive, weights, spec.gltf, spec.use, components, values, where);
+      morph(primitive, weights, spec.gltf.c_str(), spec.use, components, values, where);
       part.attributes.push_back({spec.name, components, std::move(values)});
     }
     // Application-specific attributes ("_name", as rastercheck export writes them) whose name

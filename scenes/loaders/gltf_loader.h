@@ -14,7 +14,8 @@ struct GltfContent {
   std::optional<CameraSpec> camera;   // the first camera met in the node hierarchy, if any
 };
 
-// Reads POSITION, NORMAL ("normal"), TEXCOORD_0 ("uv") and COLOR_0 ("color"); attributes that
+// Reads POSITION, NORMAL ("normal"), TEXCOORD_n ("uv", "uv1"...), COLOR_n ("color", "color1"...)
+// and application-specific "_name" attributes ("name"); attributes that
 // not every primitive carries are dropped. Node transforms (matrix or TRS) are applied, and
 // morph targets at the weights in force, and skins as their joints stand. Sparse accessors, KHR_mesh_quantization and
 // EXT_meshopt_compression are read (docs/scene-file.md).

@@ -38,11 +38,22 @@ const char* typeOf(int components) {
   return types[std::clamp(components, 1, 4) - 1];
 }
 
-// glTF's name for an attribute: the three it defines, else application-specific ("_name").
+// The set number n of a name "uv" (0) or "uv<n>" for n in 1..7, or -1.
+int setOf(const std::string& name, const std::string& stem) {
+  if (name == stem) return 0;
+  if (name.size() != stem.size() + 1 || name.compare(0, stem.size(), stem) != 0) return -1;
+  const char digit = name.back();
+  return digit >= '1' && digit <= '7' ? digit - '0' : -1;
+}
+
+// glTF's name for an attribute, as the loader names them back: NORMAL, TEXCOORD_n ("uv",
+// "uv1"...), COLOR_n ("color", "color1"...), else application-specific ("_name").
 std::string semanticOf(const Attribute& a) {
   if (a.name == "normal" && a.components == 3) return "NORMAL";
-  if (a.name == "uv" && a.components == 2) return "TEXCOORD_0";
-  if (a.name == "color" && (a.components == 3 || a.components == 4)) return "COLOR_0";
+  if (const int set = setOf(a.name, "uv"); set >= 0 && a.components == 2) return "TEXCOORD_" + std::to_string(set);
+  if (const int set = setOf(a.name, "color"); set >= 0 && (a.components == 3 || a.components == 4)) {
+    return "COLOR_" + std::to_string(set);
+  }
   return "_" + a.name;
 }
 

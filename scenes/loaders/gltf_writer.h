@@ -10,8 +10,9 @@ namespace rc {
 
 // The scene as one glTF 2.0 document: a `.glb` (binary) or a `.gltf` with its buffer embedded as
 // a data: URI. The mesh is one primitive of float positions, 32-bit indices in the mesh's
-// triangle order, and its attributes ("normal" as NORMAL, "uv" as TEXCOORD_0, "color" as
-// COLOR_0, any other as the application-specific "_name"), all as stored, bit for bit. The camera
+// triangle order, and its attributes ("normal" as NORMAL, "uv", "uv1"... as TEXCOORD_n, "color",
+// "color1"... as COLOR_n, any other as the application-specific "_name"), all as stored, bit
+// for bit. The camera
 // is a perspective camera on a node placed by a matrix (glTF's convention: looking down -Z, +Y
 // up). glTF has no image size and keeps only yfov and the pose, so the camera's extras also hold
 // rastercheck's camera exactly ("rastercheck_camera": eye, target, up, fov_y_degrees, near, far,

@@ -353,6 +353,31 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
                        ExitCode::kBadInput, {"meshes[0].primitives[0].targets[1]", "TEXCOORD_0 count differs"}, "bad target");
 }
 
+TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  const int uv0 = b.view(bytesOf<float>({0, 0, 1, 0, 0, 1}));
+  const int uv1 = b.view(bytesOf<std::uint8_t>({0, 0, 0, 0, 255, 0, 0, 0, 0, 51, 0, 0}), 4);  // padded to 4 bytes
+  const int color1 = b.view(bytesOf<float>({1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 0.5f}));
+  b.accessor(denseVec3(base, 3));
+  b.accessor(R"({"bufferView": )" + std::to_string(uv0) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(uv1) + R"(, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC2"})");
+  b.accessor(R"({"bufferView": )" + std::to_string(color1) + R"(, "componentType": 5126, "count": 3, "type": "VEC4"})");
+  const std::string path =
+      dir.write("sets.gltf", b.text(R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2, "COLOR_1": 3})"));
+  const Scene scene = loadScene(path);
+  ASSERT_NE(scene.mesh.findAttribute("uv1"), nullptr);
+  EXPECT_EQ(scene.mesh.findAttribute("uv1")->values, (std::vector<float>{0, 0, 1, 0, 0, 0.2f}));
+  ASSERT_NE(scene.mesh.findAttribute("color1"), nullptr);
+  EXPECT_EQ(scene.mesh.findAttribute("color1")->components, 4);
+  EXPECT_EQ(scene.mesh.findAttribute("color"), nullptr);
+  const nlohmann::json exported = nlohmann::json::parse(gltfFromScene(scene, false));
+  const nlohmann::json& attributes = exported["meshes"][0]["primitives"][0]["attributes"];
+  for (const char* name : {"POSITION", "TEXCOORD_0", "TEXCOORD_1", "COLOR_1"}) EXPECT_TRUE(attributes.contains(name)) << name;
+  EXPECT_EQ(attributes.size(), 4u);
+}
+
 TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
   TempDir dir;
   GltfBuilder b;
