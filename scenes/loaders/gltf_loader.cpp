@@ -57,10 +57,11 @@ bool finiteMatrix(const glm::dmat4& m) {
 // Extensions a file may require that rastercheck can honour: KHR_mesh_quantization,
 // EXT_meshopt_compression and EXT_mesh_gpu_instancing are read; the
 // others concern materials, textures and lights, which rastercheck never uses (it interpolates
-// the stored TEXCOORD_0, before any texture transform).
+// the stored TEXCOORD_n, before any texture transform).
 bool honouredExtension(const std::string& e) {
-  return e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression" || e == "EXT_mesh_gpu_instancing" || e == "KHR_texture_transform" || e == "KHR_texture_basisu" ||
-         e == "EXT_texture_webp" || e == "EXT_texture_avif" || e == "KHR_lights_punctual" || e.rfind("KHR_materials_", 0) == 0;
+  return e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression" || e == "EXT_mesh_gpu_instancing" ||
+         e == "KHR_texture_transform" || e == "KHR_texture_basisu" || e == "EXT_texture_webp" || e == "EXT_texture_avif" ||
+         e == "KHR_lights_punctual" || e.rfind("KHR_materials_", 0) == 0;
 }
 
 struct Walker {
@@ -135,8 +136,9 @@ struct Walker {
     for (const auto& [semantic, index] : attrs) custom.emplace_back(index, semantic);
     std::sort(custom.begin(), custom.end());
     for (const auto& [index, semantic] : custom) {
+      if (semantic.size() < 2 || semantic[0] != '_') continue;
       const std::string name = semantic.substr(1);
-      if (semantic[0] != '_' || !validAttributeName(name) || part.findAttribute(name)) continue;
+      if (!validAttributeName(name) || part.findAttribute(name)) continue;
       const int components = index >= 0 && std::size_t(index) < model.accessors.size()
                                  ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(index)].type))
                                  : 1;
@@ -325,8 +327,8 @@ struct Walker {
     for (int f = 0; f < 3; ++f) {
       if (!attributes.Has(kFields[f].name)) continue;
       const tinygltf::Value& index = attributes.Get(kFields[f].name);
-      if (!index.IsNumber()) throw badInput(at + "/attributes/" + kFields[f].name, "is not an accessor index");
-      values[f] = reader.floats(index.GetNumberAsInt(), kFields[f].use, kFields[f].components);
+      if (!index.IsInt()) throw badInput(at + "/attributes/" + kFields[f].name, "is not an accessor index");
+      values[f] = reader.floats(index.Get<int>(), kFields[f].use, kFields[f].components);
       const std::size_t n = values[f].size() / std::size_t(kFields[f].components);
       if (any && n != count) throw badInput(at, std::string(kFields[f].name) + " has " + std::to_string(n) + " instances, not " + std::to_string(count));
       count = n;

@@ -376,6 +376,12 @@ TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
   const nlohmann::json& attributes = exported["meshes"][0]["primitives"][0]["attributes"];
   for (const char* name : {"POSITION", "TEXCOORD_0", "TEXCOORD_1", "COLOR_1"}) EXPECT_TRUE(attributes.contains(name)) << name;
   EXPECT_EQ(attributes.size(), 4u);
+
+  // Application-specific names that cannot name a channel are skipped: empty, "_" alone, a dash.
+  const Scene odd = loadScene(dir.write(
+      "odd.gltf", b.text(R"("attributes": {"POSITION": 0, "": 1, "_": 1, "_a-b": 1, "_ok": 1, "TEXCOORD_0": 1})")));
+  EXPECT_EQ(odd.mesh.attributes.size(), 2u);
+  EXPECT_NE(odd.mesh.findAttribute("ok"), nullptr);
 }
 
 TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
