@@ -368,8 +368,12 @@ struct Walker {
     const tinygltf::PerspectiveCamera& p = camera.perspective;
     CameraSpec spec;
     spec.eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
-    spec.target = spec.eye + glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
-    spec.up = glm::normalize(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)));
+    const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0)), up(world * glm::dvec4(0, 1, 0, 0));
+    if (!(glm::length(forward) > 0.0) || !(glm::length(up) > 0.0)) {
+      throw badInput(where, "the camera's transform collapses its view or up direction to zero");
+    }
+    spec.target = spec.eye + glm::normalize(forward);
+    spec.up = glm::normalize(up);
     spec.fovYDegrees = p.yfov * 180.0 / M_PI;
     spec.zNear = p.znear;
     spec.zFar = p.zfar > 0.0 ? p.zfar : std::numeric_limits<double>::infinity();  // 0: infinite

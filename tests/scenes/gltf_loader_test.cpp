@@ -645,6 +645,11 @@ TEST(GltfExport, ACameraEditedAfterExportWinsOverTheExactOneKeptInExtras) {
   const Scene wider = loadScene(dir.write("wider.gltf", doc.dump()));
   EXPECT_NEAR(wider.camera.spec().fovYDegrees, 180.0 / M_PI, 1e-12);
   EXPECT_EQ(wider.camera.height(), 600);
+  // A camera node whose matrix flattens its view direction is refused (it divided by zero).
+  doc = nlohmann::json::parse(gltfFromScene(scene, false));
+  for (int i = 8; i < 11; ++i) doc["nodes"][1]["matrix"][i] = 0.0;
+  testing::expectError([&] { loadGltf(dir.write("flat.gltf", doc.dump())); }, ExitCode::kBadInput,
+                       {"flat.gltf: nodes[1]", "collapses its view or up direction to zero"}, "flat camera");
   // Untouched, the extras give back the exact camera.
   EXPECT_EQ(loadScene(dir.write("kept.gltf", gltfFromScene(scene, false))).camera.height(), scene.camera.height());
 }
