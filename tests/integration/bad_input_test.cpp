@@ -134,6 +134,20 @@ TEST(BadInput, GltfAndGlbFiles) {
                           "x$(id).bin", "x`id`.bin", "x;rm.bin"}) {
     expectRefusedCheck(dir, dir.write("uri.gltf", gltf(uri, 3, 3)), 3, "/buffers/0/uri");
   }
+  // What a real file may store, refused where it breaks the rules (docs/scene-file.md).
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = gltf(buffer, 3, 3);
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  expectRefusedCheck(dir, dir.write("quantised.gltf", edited(R"("componentType": 5126)", R"("componentType": 5122)")), 3,
+                     "accessors[0]: SHORT components are not allowed for POSITION unless the file lists KHR_mesh_quantization");
+  expectRefusedCheck(dir,
+                     dir.write("sparse.gltf", edited(R"("type": "VEC3"})", R"("type": "VEC3", "sparse": {"count": 4,
+                         "indices": {"bufferView": 1, "componentType": 5123}, "values": {"bufferView": 0}}})")),
+                     3, "accessors[0].sparse: count 4 is not between 1 and the accessor's count 3");
+  expectRefusedCheck(dir, dir.write("draco.gltf", edited(R"("scenes")", R"("extensionsRequired": ["KHR_draco_mesh_compression"], "scenes")")),
+                     3, "/extensionsRequired: needs extensions rastercheck does not read: KHR_draco_mesh_compression");
   std::string json = gltf("x.bin", 3, 3);
   while (json.size() % 4) json += ' ';
   const std::string glbBody = uint32le(std::uint32_t(json.size())) + "JSON" + json;
