@@ -11,6 +11,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/base64.h"
 #include "core/error.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
@@ -25,21 +26,6 @@ namespace rc {
 namespace {
 
 using testing::TempDir;
-
-std::string base64(const std::string& in) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    unsigned n = (unsigned char)in[i] << 16;
-    if (i + 1 < in.size()) n |= (unsigned char)in[i + 1] << 8;
-    if (i + 2 < in.size()) n |= (unsigned char)in[i + 2];
-    out += k[(n >> 18) & 63];
-    out += k[(n >> 12) & 63];
-    out += i + 1 < in.size() ? k[(n >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? k[n & 63] : '=';
-  }
-  return out;
-}
 
 // Three float3 positions (36 bytes) followed by three uint16 indices and 2 bytes of padding.
 std::string triangleBytes(std::uint16_t lastIndex = 2) {
@@ -198,9 +184,14 @@ struct GltfBuilder {
   }
 };
 
-std::string denseVec3(int view, int count, int type = 5126, const std::string& more = "") {
-  return R"({"bufferView": )" + std::to_string(view) + R"(, "componentType": )" + std::to_string(type) +
-         R"(, "count": )" + std::to_string(count) + R"(, "type": "VEC3")" + more + "}";
+// An accessor over a whole buffer view: `count` elements of `type` ("VEC2"...), `more` spliced in.
+std::string dense(int view, int count, const char* type, int componentType = 5126, const std::string& more = "") {
+  return R"({"bufferView": )" + std::to_string(view) + R"(, "componentType": )" + std::to_string(componentType) +
+         R"(, "count": )" + std::to_string(count) + R"(, "type": ")" + type + "\"" + more + "}";
+}
+
+std::string denseVec3(int view, int count, int componentType = 5126, const std::string& more = "") {
+  return dense(view, count, "VEC3", componentType, more);
 }
 
 std::string sparse(int count, int indicesView, int indexType, int valuesView) {
@@ -287,7 +278,7 @@ TEST(GltfLoader, QuantizedAttributesLoadWhereTheFileUsesKhrMeshQuantization) {
   const int t = b.view(bytesOf<std::uint16_t>({0, 0, 1000, 0, 0, 65535}));
   b.accessor(denseVec3(p, 3, 5122, R"(, "normalized": true)"));
   b.accessor(denseVec3(n, 3, 5120, R"(, "normalized": true)"));
-  b.accessor(R"({"bufferView": )" + std::to_string(t) + R"(, "componentType": 5123, "count": 3, "type": "VEC2"})");
+  b.accessor(dense(t, 3, "VEC2", 5123));
   const std::string primitive = R"("attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2})";
   testing::expectError([&] { loadGltf(dir.write("plain.gltf", b.text(primitive))); }, ExitCode::kBadInput,
                        {"plain.gltf: accessors[0]", "normalised SHORT components are not allowed for POSITION",
@@ -328,9 +319,9 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
   const int tv = b.view(bytesOf<float>({0, 2, 0}));
   const int duv = b.view(bytesOf<float>({0.5f, 0, 0.5f, 0, 0.5f, 0}));
   b.accessor(denseVec3(base, 3));
-  b.accessor(R"({"bufferView": )" + std::to_string(uvs) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
+  b.accessor(dense(uvs, 3, "VEC2"));
   b.accessor(R"({"componentType": 5126, "count": 3, "type": "VEC3")" + sparse(1, ti, 5121, tv) + "}");
-  b.accessor(R"({"bufferView": )" + std::to_string(duv) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
+  b.accessor(dense(duv, 3, "VEC2"));
   const std::string primitive =
       R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "targets": [{"POSITION": 2}, {"TEXCOORD_0": 3}])";
 
@@ -348,7 +339,7 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
                        "weights count");
   // A target that is not used (weight 0) is still read, and refused when it is bad.
   GltfBuilder bad = b;
-  bad.accessors[3] = R"({"bufferView": )" + std::to_string(duv) + R"(, "componentType": 5126, "count": 2, "type": "VEC2"})";
+  bad.accessors[3] = dense(duv, 2, "VEC2");
   testing::expectError([&] { loadGltf(dir.write("bad.gltf", bad.text(primitive, R"(, "weights": [1, 0])"))); },
                        ExitCode::kBadInput, {"meshes[0].primitives[0].targets[1]", "TEXCOORD_0 count differs"}, "bad target");
 }
@@ -361,9 +352,9 @@ TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
   const int uv1 = b.view(bytesOf<std::uint8_t>({0, 0, 0, 0, 255, 0, 0, 0, 0, 51, 0, 0}), 4);  // padded to 4 bytes
   const int color1 = b.view(bytesOf<float>({1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 0.5f}));
   b.accessor(denseVec3(base, 3));
-  b.accessor(R"({"bufferView": )" + std::to_string(uv0) + R"(, "componentType": 5126, "count": 3, "type": "VEC2"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(uv1) + R"(, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC2"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(color1) + R"(, "componentType": 5126, "count": 3, "type": "VEC4"})");
+  b.accessor(dense(uv0, 3, "VEC2"));
+  b.accessor(dense(uv1, 3, "VEC2", 5121, R"(, "normalized": true)"));
+  b.accessor(dense(color1, 3, "VEC4"));
   const std::string path =
       dir.write("sets.gltf", b.text(R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2, "COLOR_1": 3})"));
   const Scene scene = loadScene(path);
@@ -394,7 +385,7 @@ TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
   const int scales = b.view(bytesOf<float>({1, 1, 1, 2, 2, 2}));
   b.accessor(denseVec3(base, 3));
   b.accessor(denseVec3(translations, 2));
-  b.accessor(R"({"bufferView": )" + std::to_string(rotations) + R"(, "componentType": 5122, "normalized": true, "count": 2, "type": "VEC4"})");
+  b.accessor(dense(rotations, 2, "VEC4", 5122, R"(, "normalized": true)"));
   b.accessor(denseVec3(scales, 2));
   const std::string instancing =
       R"(, "translation": [0, 0, 5], "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 1, "ROTATION": 2, "SCALE": 3}}})";
@@ -527,11 +518,11 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
                                           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}));
   b.accessor(denseVec3(base, 3));
   b.accessor(denseVec3(normals, 3));
-  b.accessor(R"({"bufferView": )" + std::to_string(joints0) + R"(, "componentType": 5121, "count": 3, "type": "VEC4"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(weights0) + R"(, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC4"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(joints1) + R"(, "componentType": 5123, "count": 3, "type": "VEC4"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(weights1) + R"(, "componentType": 5126, "count": 3, "type": "VEC4"})");
-  b.accessor(R"({"bufferView": )" + std::to_string(bind) + R"(, "componentType": 5126, "count": 2, "type": "MAT4"})");
+  b.accessor(dense(joints0, 3, "VEC4", 5121));
+  b.accessor(dense(weights0, 3, "VEC4", 5121, R"(, "normalized": true)"));
+  b.accessor(dense(joints1, 3, "VEC4", 5123));
+  b.accessor(dense(weights1, 3, "VEC4"));
+  b.accessor(dense(bind, 2, "MAT4"));
   const std::string primitive =
       R"("attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 5})";
   // Node 0 holds the mesh (its translation must not apply); nodes 1 and 2 are the joints, 2 a
