@@ -51,7 +51,7 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path) {
   return bytes.substr(20, std::size_t(chunkLength));
 }
 
-void checkUris(const std::string& json, const std::string& path) {
+nlohmann::json checkUris(const std::string& json, const std::string& path) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(json);
@@ -79,6 +79,7 @@ void checkUris(const std::string& json, const std::string& path) {
       }
     }
   }
+  return doc;
 }
 
 namespace {

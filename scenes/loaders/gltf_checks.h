@@ -4,6 +4,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,7 +19,8 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path);
 // Refuses (badInput naming the JSON path) any buffer or image URI that is not a data: URI or a
 // plain relative path inside the file's folder: absolute paths, "..", schemes such as file://
 // or http://, backslashes, and shell or expansion characters.
-void checkUris(const std::string& json, const std::string& path);
+// Returns the parsed document, for the checks that follow (planMeshopt).
+nlohmann::json checkUris(const std::string& json, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:

@@ -429,8 +429,7 @@ GltfContent loadGltf(const std::string& path) {
   const std::string bytes = readInputFile(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const std::string json = binary ? gltf::glbJsonChunk(bytes, path) : bytes;
-  gltf::checkUris(json, path);
-  const gltf::MeshoptPlan meshopt = gltf::planMeshopt(json, path);
+  const gltf::MeshoptPlan meshopt = gltf::planMeshopt(gltf::checkUris(json, path), path);
   const std::string input = !meshopt.changed ? std::string() : binary ? gltf::replaceGlbJson(bytes, meshopt.json) : meshopt.json;
   const std::string& text = meshopt.changed ? input : bytes;
 

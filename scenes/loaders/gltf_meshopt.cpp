@@ -49,10 +49,9 @@ E choose(const nlohmann::json& object, const char* name, const char* fallback,
 
 }  // namespace
 
-MeshoptPlan planMeshopt(const std::string& json, const std::string& path) {
+MeshoptPlan planMeshopt(nlohmann::json doc, const std::string& path) {
   MeshoptPlan plan;
-  nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) return plan;  // tinygltf reports it
+  if (!doc.is_object()) return plan;  // tinygltf reports it
   if (doc.contains("bufferViews") && doc["bufferViews"].is_array()) {
     const nlohmann::json& views = doc["bufferViews"];
     for (std::size_t i = 0; i < views.size(); ++i) {

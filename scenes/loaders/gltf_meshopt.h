@@ -4,6 +4,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,11 +28,11 @@ struct MeshoptPlan {
   bool changed = false;              // json differs from the input
 };
 
-// Reads the extension objects from the JSON, checking each field's type and range (errors name
+// Reads the extension objects from the parsed JSON (checkUris's document), checking each field's type and range (errors name
 // the JSON path, e.g. "/bufferViews/3/extensions/EXT_meshopt_compression/mode"). A fallback
 // buffer has no bytes of its own; tinygltf cannot load such a buffer, so the JSON it gets gives
 // it a stub instead.
-MeshoptPlan planMeshopt(const std::string& json, const std::string& path);
+MeshoptPlan planMeshopt(nlohmann::json doc, const std::string& path);
 
 // For a GLB: the same file with its JSON chunk replaced by `json` (the other chunks as they were).
 std::string replaceGlbJson(const std::string& glb, const std::string& json);
