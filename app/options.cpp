@@ -96,6 +96,10 @@ void addSceneOptions(CLI::App* command, RenderSettings& s) {
   command->add_option("--target", s.target, "point the camera looks at, x,y,z");
   command->add_option("--up", s.up, "camera up direction x,y,z, overriding the scene's (needed where the view is along it)");
   command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(1e-3, 179.999));
+  command->add_option("--camera", s.camera,
+                      "glTF files: the camera to render through, by its index in the file's cameras or its name "
+                      "(default: the first the scene places)")
+      ->type_name("INDEX|NAME");
   command->add_option("--attributes", s.attributes, "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
       ->delimiter(',');
   command->add_option("--max-triangles", s.maxTriangles, "refuse scenes with more triangles than this")
@@ -168,6 +172,7 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings) {
   if (!settings.up.empty()) o.up = parseVec3(settings.up, "--up");
   if (settings.fovYDegrees > 0) o.fovYDegrees = settings.fovYDegrees;
   if (!settings.attributes.empty()) o.attributes = settings.attributes;
+  o.camera = settings.camera;
   Scene scene = rc::loadScene(spec, o);
   if (std::size_t(settings.maxTriangles) < scene.mesh.triangleCount()) {
     throw badInput(spec, std::to_string(scene.mesh.triangleCount()) + " triangles exceed --max-triangles " +

@@ -23,6 +23,7 @@ struct RenderSettings {
   std::string size;        // "WxH" override of the scene's image size, or empty
   std::string eye, target, up;  // "x,y,z" camera overrides, or empty
   double fovYDegrees = 0;  // vertical field of view override; 0 keeps the scene's
+  std::string camera;      // a glTF file's camera (index or name); empty: the first it places
   std::vector<std::string> attributes;  // narrows the attributes written; empty keeps all
   long long maxTriangles = 20'000'000;  // larger scenes are refused (memory stays bounded)
   int maxImageSide = 16384;             // larger images are refused (OpenEXR's limit is 16384)

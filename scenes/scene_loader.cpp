@@ -19,24 +19,42 @@ std::string lowerExtension(const std::string& path) {
 
 namespace {
 
-Scene meshScene(const std::string& spec, Mesh mesh, std::optional<CameraSpec> camera, const SceneOverrides& o) {
+Scene meshScene(const std::string& spec, Mesh mesh, std::optional<CameraSpec> camera, std::string description,
+                const SceneOverrides& o) {
   const int width = o.width ? o.width : (camera ? camera->width : 800);
   const int height = o.height ? o.height : (camera ? camera->height : 600);
   CameraSpec spec2 = camera ? *camera : frameMesh(mesh, 45.0, width, height);
-  return Scene{spec, camera ? "glTF scene with its camera" : "mesh with a framing camera", std::move(mesh),
-               Camera(spec2, spec)};
+  return Scene{spec, std::move(description), std::move(mesh), Camera(spec2, spec)};
 }
 
+// A glTF file's scene through the camera --camera chooses (by default the first placed). A
+// camera rastercheck cannot render through is refused, unless --eye and --target replace its
+// pose: the mesh is then framed as a bare mesh would be, and seen from there.
+Scene gltfScene(const std::string& spec, const SceneOverrides& o) {
+  GltfContent content = loadGltf(spec);
+  const GltfCamera* chosen = selectGltfCamera(content, o.camera, spec);
+  if (!chosen) return meshScene(spec, std::move(content.mesh), std::nullopt, "glTF mesh with a framing camera", o);
+  const std::string which = "cameras[" + std::to_string(chosen->index) + "]" +
+                            (chosen->name.empty() ? std::string() : " \"" + chosen->name + "\"");
+  if (chosen->spec) return meshScene(spec, std::move(content.mesh), chosen->spec, "glTF scene through its " + which, o);
+  if (!(o.eye && o.target)) {
+    throw Error(ExitCode::kBadInput, chosen->refusal + " (choose another of the file's cameras with --camera, or give "
+                                                       "--eye and --target to view the scene from elsewhere)");
+  }
+  return meshScene(spec, std::move(content.mesh), std::nullopt,
+                   "glTF mesh with a framing camera (" + which + " cannot be used)", o);
+}
 }  // namespace
 
 Scene loadScene(const std::string& spec, const SceneOverrides& o) {
   const std::string extension = lowerExtension(spec);
+  const bool gltf = extension == ".gltf" || extension == ".glb";
+  if (!o.camera.empty() && !gltf) {
+    throw usageError("--camera " + o.camera + ": chooses among a glTF file's cameras, and " + spec + " is not a glTF file");
+  }
   Scene scene = [&] {
-    if (extension == ".obj") return meshScene(spec, loadObj(spec), std::nullopt, o);
-    if (extension == ".gltf" || extension == ".glb") {
-      GltfContent content = loadGltf(spec);
-      return meshScene(spec, std::move(content.mesh), content.camera, o);
-    }
+    if (extension == ".obj") return meshScene(spec, loadObj(spec), std::nullopt, "mesh with a framing camera", o);
+    if (gltf) return gltfScene(spec, o);
     if (extension == ".json") return loadSceneFile(spec);
     return makeBuiltinScene(spec);
   }();

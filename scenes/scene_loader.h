@@ -15,11 +15,15 @@ struct SceneOverrides {
   std::optional<glm::dvec3> eye, target, up;  // camera position, aim and up direction
   std::optional<double> fovYDegrees;
   std::optional<std::vector<std::string>> attributes;  // narrow the attributes written
+  std::string camera;  // a glTF file's camera, by index in its `cameras` or by name; empty: the first placed
 };
 
 // Files are recognised by their extension (.obj, .gltf, .glb, .json, any case); anything else
 // is a built-in scene name. A bare mesh (OBJ, or glTF without a camera) gets a camera framing
-// its bounding box (scenes/loaders/framing.h). Throws usageError / badInput / ioError.
+// its bounding box (scenes/loaders/framing.h). A glTF file is seen through the camera
+// `overrides.camera` names, by default the first its hierarchy places; one rastercheck cannot
+// render through (orthographic) is refused unless --eye and --target replace it.
+// Throws usageError / badInput / ioError.
 Scene loadScene(const std::string& spec, const SceneOverrides& overrides = {});
 
 // The extension of a path's file name, with its dot, in lower case: ".obj", ".png"; "" for none.

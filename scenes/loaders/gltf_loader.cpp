@@ -1,5 +1,5 @@
 // glTF loading: tinygltf parses (confined by gltf_checks), this file walks the node hierarchy,
-// gathers triangle primitives in world space, and reads the first camera.
+// gathers triangle primitives in world space, and reads the cameras it places.
 #include "scenes/loaders/gltf_loader.h"
 
 #include <algorithm>
@@ -359,18 +359,25 @@ struct Walker {
 
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
     if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
+    for (const GltfCamera& placed : content.cameras) {
+      if (placed.index == index) return;  // placed again by a later node: the first placement counts
+    }
     const tinygltf::Camera& camera = model.cameras[index];
+    GltfCamera& out = content.cameras.emplace_back();
+    out.index = index;
+    out.name = camera.name;
     const std::string at = path + ": cameras[" + std::to_string(index) + "]";
     if (camera.type != "perspective") {
-      throw badInput(at, "is " + camera.type + "; only perspective cameras are supported "
-                         "(give --eye and --target to view the scene in perspective)");
+      out.refusal = at + ": is " + camera.type + "; only perspective cameras are supported";
+      return;
     }
     const tinygltf::PerspectiveCamera& p = camera.perspective;
     CameraSpec spec;
     spec.eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
     const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0)), up(world * glm::dvec4(0, 1, 0, 0));
     if (!(glm::length(forward) > 0.0) || !(glm::length(up) > 0.0)) {
-      throw badInput(where, "the camera's transform collapses its view or up direction to zero");
+      out.refusal = where + ": the camera's transform collapses its view or up direction to zero";
+      return;
     }
     spec.target = spec.eye + glm::normalize(forward);
     spec.up = glm::normalize(up);
@@ -381,9 +388,14 @@ struct Walker {
     spec.width = p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)
                      ? int(std::clamp(std::lround(600.0 * p.aspectRatio), 1L, 16384L))
                      : 800;
-    Camera(spec, at);  // validates now, naming the camera
+    try {
+      Camera(spec, at);  // validates, naming the camera
+    } catch (const Error& e) {
+      out.refusal = e.what();
+      return;
+    }
     if (const std::optional<CameraSpec> exact = exactCamera(camera.extras, spec)) spec = *exact;
-    content.camera = spec;
+    out.spec = spec;
   }
 
   void visit(int index, const glm::dmat4& parent, int depth) {
@@ -394,7 +406,7 @@ struct Walker {
     const tinygltf::Node& node = model.nodes[index];
     const glm::dmat4 world = parent * localMatrix(node);
     if (!finiteMatrix(world)) throw badInput(where, "transform is not finite");
-    if (node.camera >= 0 && !content.camera) readCamera(node.camera, world, where);
+    if (node.camera >= 0) readCamera(node.camera, world, where);
     if (node.mesh >= 0) {
       if (std::size_t(node.mesh) >= model.meshes.size()) throw badInput(where, "mesh index out of range");
       const bool skinned = node.skin >= 0;  // then the joints place it, not the node
@@ -475,6 +487,21 @@ GltfContent loadGltf(const std::string& path) {
   if (walker.content.mesh.triangles.empty()) throw badInput(path, "no triangle primitives in the scene");
   validateMesh(walker.content.mesh, path);
   return std::move(walker.content);
+}
+
+const GltfCamera* selectGltfCamera(const GltfContent& content, const std::string& selector, const std::string& path) {
+  if (selector.empty()) return content.cameras.empty() ? nullptr : &content.cameras.front();
+  const bool digits = selector.size() <= 9 && std::all_of(selector.begin(), selector.end(), [](char c) { return c >= '0' && c <= '9'; });
+  for (const GltfCamera& camera : content.cameras) {
+    if (digits ? camera.index == std::stoi(selector) : camera.name == selector) return &camera;
+  }
+  std::string placed;
+  for (const GltfCamera& camera : content.cameras) {
+    placed += (placed.empty() ? "" : ", ") + std::to_string(camera.index) +
+              (camera.name.empty() ? std::string() : " (\"" + camera.name + "\")");
+  }
+  throw usageError("--camera " + selector + ": " + path + " places no such camera; " +
+                   (placed.empty() ? std::string("it places none") : "it places " + placed));
 }
 
 }  // namespace rc

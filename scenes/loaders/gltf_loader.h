@@ -3,15 +3,25 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scenes/camera.h"
 #include "scenes/mesh.h"
 
 namespace rc {
 
+// A camera that a node of the default scene places.
+struct GltfCamera {
+  int index = -1;                  // in the file's `cameras`
+  std::string name;                // its `name`, or empty
+  std::optional<CameraSpec> spec;  // the camera, where rastercheck can render through it
+  std::string refusal;             // otherwise why not, naming the file and the place
+};
+
 struct GltfContent {
-  Mesh mesh;                          // every triangle primitive of the default scene, in world space
-  std::optional<CameraSpec> camera;   // the first camera met in the node hierarchy, if any
+  Mesh mesh;                        // every triangle primitive of the default scene, in world space
+  std::vector<GltfCamera> cameras;  // each camera the hierarchy places, first met first (a camera
+                                    // that several nodes place: the first of them)
 };
 
 // Reads POSITION, NORMAL ("normal"), TEXCOORD_n ("uv", "uv1"...), COLOR_n ("color", "color1"...)
@@ -21,8 +31,14 @@ struct GltfContent {
 // EXT_meshopt_compression are read (docs/scene-file.md).
 // Triangle lists, strips and fans are read; points and lines are skipped (no surface).
 // A URI is never expanded, executed or fetched: only data: URIs and relative paths inside the
-// file's own folder are read. Orthographic cameras are refused.
+// file's own folder are read. A camera is checked only when it is used: an orthographic one,
+// or one whose node collapses its view, is listed with its refusal.
 // Throws ioError / badInput naming the file and the place (JSON path or byte offset).
 GltfContent loadGltf(const std::string& path);
+
+// The camera `selector` names: its index in the file's `cameras` or its name; empty, the
+// first placed. nullptr when the selector is empty and the file places no camera. Throws
+// usageError naming the file and listing its cameras when none matches.
+const GltfCamera* selectGltfCamera(const GltfContent& content, const std::string& selector, const std::string& path);
 
 }  // namespace rc

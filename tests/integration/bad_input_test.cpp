@@ -148,6 +148,15 @@ TEST(BadInput, GltfAndGlbFiles) {
                      3, "accessors[0].sparse: count 4 is not between 1 and the accessor's count 3");
   expectRefusedCheck(dir, dir.write("draco.gltf", edited(R"("scenes")", R"("extensionsRequired": ["KHR_draco_mesh_compression"], "scenes")")),
                      3, "/extensionsRequired: needs extensions rastercheck does not read: KHR_draco_mesh_compression");
+  // The camera in use must be one rastercheck can render through; --camera must name one.
+  const std::string cameras = dir.write(
+      "cameras.gltf", edited(R"("nodes": [{"mesh": 0}])",
+                             R"("nodes": [{"mesh": 0, "children": [1, 2]}, {"camera": 0, "translation": [0, 0, 3]}, {"camera": 1, "translation": [0, 0, 3]}],
+                                "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}},
+                                            {"name": "top", "type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 9}}])"));
+  EXPECT_EQ(rastercheck("check -q " + cameras + " --camera 0").exitCode, 0);
+  expectRefusedCheck(dir, cameras, 3, "cameras.gltf: cameras[1]: is orthographic", "--camera top");
+  expectRefusedCheck(dir, cameras, 2, "--camera 2: " + cameras + " places no such camera; it places 0, 1 (\"top\")", "--camera 2");
   std::string json = gltf("x.bin", 3, 3);
   while (json.size() % 4) json += ' ';
   const std::string glbBody = uint32le(std::uint32_t(json.size())) + "JSON" + json;

@@ -55,8 +55,9 @@ TEST(GltfLoader, SampleCamerasFileHonoursItsCameraAndNodeTransform) {
   const std::string data = testing::sharedData();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent: Cameras.gltf not tested";
   const GltfContent content = loadGltf(data + "/gltf/Cameras.gltf");
-  ASSERT_TRUE(content.camera.has_value());
-  const CameraSpec& c = *content.camera;
+  ASSERT_EQ(content.cameras.size(), 2u);
+  ASSERT_TRUE(content.cameras[0].spec.has_value());
+  const CameraSpec& c = *content.cameras[0].spec;
   EXPECT_NEAR(c.eye.x, 0.5, 1e-12);
   EXPECT_NEAR(c.eye.y, 0.5, 1e-12);
   EXPECT_NEAR(c.eye.z, 3.0, 1e-12);
@@ -66,6 +67,8 @@ TEST(GltfLoader, SampleCamerasFileHonoursItsCameraAndNodeTransform) {
   EXPECT_EQ(c.zFar, 100.0);
   EXPECT_EQ(c.width, 600);  // aspectRatio 1
   EXPECT_EQ(c.height, 600);
+  EXPECT_FALSE(content.cameras[1].spec.has_value());  // the sample's second camera is orthographic
+  EXPECT_NE(content.cameras[1].refusal.find("cameras[1]: is orthographic"), std::string::npos);
   ASSERT_EQ(content.mesh.triangleCount(), 2u);
   // Node 0 rotates by about -45 degrees around x: (0, 1, 0) goes to (0, 0.707, -0.707).
   bool found = false;
@@ -105,14 +108,62 @@ TEST(GltfLoader, OutOfRangeAccessorsIndicesAndCyclesAreRefused) {
   testing::expectError([&] { loadGltf(cycle); }, ExitCode::kBadInput, {"cycle"}, "cycle");
 }
 
-TEST(GltfLoader, OrthographicCameraIsRefusedClearly) {
+TEST(GltfLoader, CameraOptionChoosesAmongTheFilesCamerasAndAnUnusableOneIsRefusedOnlyWhenUsed) {
   TempDir dir;
+  // cameras[0] is orthographic and placed first; cameras[1] ("side") is perspective. Node 3
+  // places cameras[1] again, later: the first placement counts.
   const std::string path = dir.write(
-      "ortho.gltf",
+      "two.gltf",
       gltfText(dataUri(triangleBytes()),
-               R"(, "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}])",
-               3, R"("nodes": [{"mesh": 0, "children": [1]}, {"camera": 0, "translation": [0, 0, 3]}])"));
-  testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, {"cameras[0]", "orthographic"}, "ortho");
+               R"(, "cameras": [{"name": "flat", "type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}},
+                                {"name": "side", "type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1, "aspectRatio": 2}}])",
+               3, R"("nodes": [{"mesh": 0, "children": [1, 2, 3]}, {"camera": 0, "translation": [0, 0, 3]},
+                               {"camera": 1, "translation": [0.25, 0.25, 4]}, {"camera": 1, "translation": [9, 9, 9]}])"));
+  const GltfContent content = loadGltf(path);
+  ASSERT_EQ(content.cameras.size(), 2u);
+  EXPECT_FALSE(content.cameras[0].spec.has_value());
+  EXPECT_NE(content.cameras[0].refusal.find("cameras[0]: is orthographic"), std::string::npos) << content.cameras[0].refusal;
+
+  // By default the first camera placed: orthographic, so refused, saying what to do instead.
+  testing::expectError([&] { loadScene(path); }, ExitCode::kBadInput, {"two.gltf: cameras[0]", "orthographic", "--camera", "--eye"},
+                       "first camera");
+  SceneOverrides o;
+  for (const char* selector : {"1", "side"}) {
+    o.camera = selector;
+    const Scene scene = loadScene(path, o);
+    EXPECT_EQ(scene.camera.spec().eye, glm::dvec3(0.25, 0.25, 4)) << selector;
+    EXPECT_EQ(scene.camera.width(), 1200) << selector;
+    EXPECT_NE(scene.description.find("cameras[1] \"side\""), std::string::npos) << scene.description;
+  }
+  for (const char* selector : {"flat", "0"}) {
+    o.camera = selector;
+    testing::expectError([&] { loadScene(path, o); }, ExitCode::kBadInput, {"cameras[0]", "orthographic"}, selector);
+  }
+  for (const char* selector : {"2", "Side", "-1"}) {
+    o.camera = selector;
+    testing::expectError([&] { loadScene(path, o); }, ExitCode::kUsage,
+                         {std::string("--camera ") + selector, "two.gltf", "0 (\"flat\"), 1 (\"side\")"}, selector);
+  }
+  // --eye and --target replace the unusable camera's pose: the mesh is framed from there.
+  o.camera.clear();
+  o.eye = glm::dvec3(0.5, 0.5, 5);
+  o.target = glm::dvec3(0.5, 0.5, 0);
+  const Scene framed = loadScene(path, o);
+  EXPECT_EQ(framed.camera.spec().eye, glm::dvec3(0.5, 0.5, 5));
+  EXPECT_EQ(framed.mesh.triangleCount(), 1u);
+
+  // A scene file takes only the meshes: the orthographic camera does not stop it.
+  const std::string sceneFile = dir.write("uses.json", R"({"meshes": [{"path": "two.gltf"}]})");
+  EXPECT_EQ(loadScene(sceneFile).mesh.triangleCount(), 1u);
+  // --camera is for glTF files only.
+  SceneOverrides other;
+  other.camera = "0";
+  testing::expectError([&] { loadScene(sceneFile, other); }, ExitCode::kUsage, {"--camera 0", "uses.json", "not a glTF file"}, "json");
+  testing::expectError([&] { loadScene("cube", other); }, ExitCode::kUsage, {"cube", "not a glTF file"}, "builtin");
+  // A file that places no camera has none to choose.
+  const std::string bare = dir.write("bare.gltf", gltfText(dataUri(triangleBytes())));
+  EXPECT_EQ(loadScene(bare).mesh.triangleCount(), 1u);
+  testing::expectError([&] { loadScene(bare, other); }, ExitCode::kUsage, {"bare.gltf", "places none"}, "bare");
 }
 
 std::string glb(const std::string& json, const std::string& bin, std::uint32_t declaredLength = 0) {
@@ -636,10 +687,10 @@ TEST(GltfExport, ACameraEditedAfterExportWinsOverTheExactOneKeptInExtras) {
   const Scene wider = loadScene(dir.write("wider.gltf", doc.dump()));
   EXPECT_NEAR(wider.camera.spec().fovYDegrees, 180.0 / M_PI, 1e-12);
   EXPECT_EQ(wider.camera.height(), 600);
-  // A camera node whose matrix flattens its view direction is refused (it divided by zero).
+  // A camera node whose matrix flattens its view direction is refused when used (it divided by zero).
   doc = nlohmann::json::parse(gltfFromScene(scene, false));
   for (int i = 8; i < 11; ++i) doc["nodes"][1]["matrix"][i] = 0.0;
-  testing::expectError([&] { loadGltf(dir.write("flat.gltf", doc.dump())); }, ExitCode::kBadInput,
+  testing::expectError([&] { loadScene(dir.write("flat.gltf", doc.dump())); }, ExitCode::kBadInput,
                        {"flat.gltf: nodes[1]", "collapses its view or up direction to zero"}, "flat camera");
   // Untouched, the extras give back the exact camera.
   EXPECT_EQ(loadScene(dir.write("kept.gltf", gltfFromScene(scene, false))).camera.height(), scene.camera.height());
