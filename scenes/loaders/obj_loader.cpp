@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "scenes/loaders/polygon.h"
 #include "scenes/loaders/read_file.h"
 
 namespace rc {
@@ -89,7 +90,7 @@ Mesh loadObj(const std::string& path) {
   const std::string text = readInputFile(path);
   checkNumbers(text, path);
   tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // fan-triangulated below, so every face keeps its line
+  config.triangulate = false;  // triangulated below (polygon.h), so every face keeps its line
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromString(text, "", config)) {
@@ -166,7 +167,13 @@ Mesh loadObj(const std::string& path) {
         }
         polygon.push_back(it->second);
       }
-      for (unsigned k = 1; k + 1 < arity; ++k) mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+      if (arity == 3) {
+        mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
+      } else {
+        std::vector<glm::dvec3> at(arity);
+        for (unsigned k = 0; k < arity; ++k) at[k] = glm::dvec3(mesh.positions[polygon[k]]);
+        for (const auto& [a, b, c] : triangulatePolygon(at)) mesh.triangles.push_back({polygon[a], polygon[b], polygon[c]});
+      }
       offset += arity;
       ++face;
     }

@@ -32,15 +32,38 @@ TEST(ObjLoader, FaceVaryingCornersBecomeSeparateVerticesWithTheirOwnUv) {
   EXPECT_EQ(mesh.findAttribute("normal"), nullptr);
 }
 
-TEST(ObjLoader, PolygonsAreFanTriangulatedAndNormalsRead) {
+TEST(ObjLoader, ConvexPolygonsAreFannedAndNormalsRead) {
   TempDir dir;
   const std::string path = dir.write("quad.obj",
                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
                                      "f 1//1 2//1 3//1 4//1\n");
   const Mesh mesh = loadObj(path);
-  EXPECT_EQ(mesh.triangleCount(), 2u);
+  ASSERT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_EQ(mesh.triangles[0], glm::uvec3(0, 1, 2));
+  EXPECT_EQ(mesh.triangles[1], glm::uvec3(0, 2, 3));
   ASSERT_NE(mesh.findAttribute("normal"), nullptr);
   EXPECT_EQ(mesh.findAttribute("uv"), nullptr);
+}
+
+TEST(ObjLoader, ConcavePolygonsAreTriangulatedInsideThemselves) {
+  TempDir dir;
+  // An L in the plane y = 1, wound clockwise seen from +y (its normal points down), starting
+  // at the reflex corner's neighbour: a fan from the first corner would cover (1, 1, 1)'s notch.
+  const std::string path = dir.write("l.obj",
+                                     "v 2 1 1\nv 1 1 1\nv 1 1 2\nv 0 1 2\nv 0 1 0\nv 2 1 0\n"
+                                     "f 1 2 3 4 5 6\n");
+  const Mesh mesh = loadObj(path);
+  ASSERT_EQ(mesh.triangleCount(), 4u);
+  double area = 0.0;
+  for (const glm::uvec3& t : mesh.triangles) {
+    const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    EXPECT_LE(n.y, 0.0) << "wound as the face is";
+    area += 0.5 * glm::length(n);
+    const glm::dvec3 centre = (a + b + c) / 3.0;
+    EXPECT_FALSE(centre.x > 1.0 && centre.z > 1.0) << "a triangle covers the notch";
+  }
+  EXPECT_DOUBLE_EQ(area, 3.0);  // the L's area: the triangles neither overlap nor leave it
 }
 
 TEST(ObjLoader, NegativeIndicesCountBackFromTheEnd) {
