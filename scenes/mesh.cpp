@@ -38,6 +38,10 @@ Attribute& Mesh::addAttribute(const std::string& name, int components) {
   return attributes.back();
 }
 
+glm::dvec4 movedTangent(const glm::dmat3& linear, const glm::dvec4& tangent) {
+  return {linear * glm::dvec3(tangent), glm::determinant(linear) < 0.0 ? -tangent.w : tangent.w};
+}
+
 void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart) {
   const bool first = into.positions.empty() && into.triangles.empty();
   const auto base = static_cast<unsigned>(into.positions.size());
@@ -65,6 +69,15 @@ void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart) {
         const double length = glm::length(n);
         if (length > 0.0) n /= length;
         for (int k = 0; k < 3; ++k) a.values.push_back(float(n[k]));
+      }
+    } else if (a.name == "tangent" && a.components == 4) {
+      const glm::dmat3 linear(worldFromPart);
+      for (std::size_t i = 0; i < part.positions.size(); ++i) {
+        const float* t = &source.values[4 * i];
+        glm::dvec4 moved = movedTangent(linear, glm::dvec4(t[0], t[1], t[2], t[3]));
+        const double length = glm::length(glm::dvec3(moved));
+        if (length > 0.0) moved = glm::dvec4(glm::dvec3(moved) / length, moved.w);
+        for (int k = 0; k < 4; ++k) a.values.push_back(float(moved[k]));
       }
     } else {
       a.values.insert(a.values.end(), source.values.begin(), source.values.end());

@@ -36,8 +36,14 @@ struct Mesh {
 // 1 to 64 of [A-Za-z0-9_]: what an attribute's name may be, since it names EXR channels.
 bool validAttributeName(const std::string& name);
 
-// Appends `part` to `into`, its positions mapped by `worldFromPart` (in double, rounded once)
-// and an attribute named "normal" with 3 components by its inverse transpose (renormalised).
+// A tangent as glTF stores it (xyz, and in w the sign that makes the bitangent cross(normal,
+// xyz) * w), moved by a transform's linear part: xyz by the part itself (not renormalised), w
+// negated where the transform mirrors, so that the bitangent keeps pointing the way it moved.
+glm::dvec4 movedTangent(const glm::dmat3& linear, const glm::dvec4& tangent);
+
+// Appends `part` to `into`, its positions mapped by `worldFromPart` (in double, rounded once),
+// an attribute named "normal" with 3 components by its inverse transpose and one named
+// "tangent" with 4 by movedTangent (both renormalised).
 // Only attributes carried by both (same name and component count) survive: a merged mesh never
 // has channels some of its triangles cannot fill. `into` may start empty (then it takes all of
 // part's attributes).

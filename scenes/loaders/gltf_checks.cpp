@@ -100,6 +100,7 @@ const char* useName(Use use) {
   switch (use) {
     case Use::kPosition: return "POSITION";
     case Use::kNormal: return "NORMAL";
+    case Use::kTangent: return "TANGENT";
     case Use::kTexcoord: return "TEXCOORD_n";
     case Use::kColor: return "COLOR_n";
     case Use::kIndices: return "indices";
@@ -131,6 +132,7 @@ bool allowedType(Use use, bool displacement, int type, bool normalized, bool qua
     case Use::kPosition:  // KHR_mesh_quantization: any 8- or 16-bit integer; signed ones for displacements
       return quantized && (!displacement || isSigned(type));
     case Use::kNormal:  // KHR_mesh_quantization: signed normalised
+    case Use::kTangent:
       return quantized && normalized && isSigned(type);
     case Use::kTexcoord:
       if (normalized && (displacement || !isSigned(type))) return true;  // the core tables

@@ -25,7 +25,7 @@ nlohmann::json checkUris(const std::string& json, const std::string& path);
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
 // float or normalised signed integers (EXT_mesh_gpu_instancing's ROTATION).
-enum class Use { kPosition, kNormal, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom, kRotation };
+enum class Use { kPosition, kNormal, kTangent, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom, kRotation };
 
 // Bounds-checked accessor reads (64-bit arithmetic throughout). An accessor without a
 // bufferView holds zeros; sparse storage then replaces the elements it names (indices strictly

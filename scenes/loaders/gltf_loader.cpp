@@ -72,21 +72,24 @@ struct Walker {
   std::set<int> onPath;  // nodes on the current root-to-node path: a repeat is a cycle
 
   // Adds the primitive's morph targets' displacements of `name` to `values` at `weights` (every
-  // target is read, so a bad one is refused even at weight 0).
+  // target is read, so a bad one is refused even at weight 0). A displacement has `components`
+  // values a vertex, added to the first of the vertex's `stride` (TANGENT's displacements leave
+  // its w alone).
   void morph(const tinygltf::Primitive& primitive, const std::vector<double>& weights, const char* name, gltf::Use use,
-             int components, std::vector<float>& values, const std::string& where) const {
+             int components, std::vector<float>& values, const std::string& where, int stride = 0) const {
+    if (stride == 0) stride = components;
     std::vector<double> sum;
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
       auto it = primitive.targets[t].find(name);
       if (it == primitive.targets[t].end()) continue;
       const std::vector<float> d = reader.floats(it->second, use, components, true);
-      if (d.size() != values.size()) {
+      if (d.size() / std::size_t(components) != values.size() / std::size_t(stride)) {
         throw badInput(where + ".targets[" + std::to_string(t) + "]", std::string(name) + " count differs from the primitive's");
       }
       const double w = t < weights.size() ? weights[t] : 0.0;
       if (w == 0.0) continue;
       if (sum.empty()) sum.assign(values.begin(), values.end());
-      for (std::size_t i = 0; i < d.size(); ++i) sum[i] += w * double(d[i]);
+      for (std::size_t i = 0; i < d.size(); ++i) sum[i / std::size_t(components) * std::size_t(stride) + i % std::size_t(components)] += w * double(d[i]);
     }
     for (std::size_t i = 0; i < sum.size(); ++i) values[i] = float(sum[i]);
   }
@@ -106,10 +109,12 @@ struct Walker {
     for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
     struct Known {
       std::string gltf, name;
-      int components[2];
+      int components[2];  // the usual count, and another the specification allows (COLOR_n: RGB or RGBA)
       gltf::Use use;
+      int displaced = 0;  // components a morph target displaces, if not all
     };
-    std::vector<Known> known = {{"NORMAL", "normal", {3, 3}, gltf::Use::kNormal}};
+    std::vector<Known> known = {{"NORMAL", "normal", {3, 3}, gltf::Use::kNormal},
+                                {"TANGENT", "tangent", {4, 4}, gltf::Use::kTangent, 3}};
     for (int set = 0; set < kMaxSets; ++set) {  // uv, uv1, ..., color, color1, ...
       const std::string suffix = set ? std::to_string(set) : "";
       known.push_back({"TEXCOORD_" + std::to_string(set), "uv" + suffix, {2, 2}, gltf::Use::kTexcoord});
@@ -126,7 +131,7 @@ struct Walker {
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, spec.gltf + " count differs from POSITION count");
       }
-      morph(primitive, weights, spec.gltf.c_str(), spec.use, components, values, where);
+      morph(primitive, weights, spec.gltf.c_str(), spec.use, spec.displaced ? spec.displaced : components, values, where, components);
       part.attributes.push_back({spec.name, components, std::move(values)});
     }
     // Application-specific attributes ("_name", as rastercheck export writes them) whose name
@@ -197,7 +202,7 @@ struct Walker {
 
   // Poses a skinned primitive as its joints' nodes stand (no animation is played): each vertex by
   // the weighted sum of its joints' world transform times inverse bind matrix, as glTF specifies;
-  // the mesh node's own transform does not apply. Positions and normals end in world space.
+  // the mesh node's own transform does not apply. Positions, normals and tangents end in world space.
   void applySkin(int skinIndex, const tinygltf::Primitive& primitive, Mesh& part, const std::string& where) {
     if (std::size_t(skinIndex) >= model.skins.size()) throw badInput(where, "skin index " + std::to_string(skinIndex) + " out of range");
     const tinygltf::Skin& skin = model.skins[std::size_t(skinIndex)];
@@ -240,9 +245,10 @@ struct Walker {
       }
     }
     if (indices.empty()) throw badInput(where, "is skinned (its node names a skin) but has no JOINTS_0 and WEIGHTS_0");
-    Attribute* normal = nullptr;
+    Attribute *normal = nullptr, *tangent = nullptr;
     for (Attribute& a : part.attributes) {
       if (a.name == "normal" && a.components == 3) normal = &a;
+      if (a.name == "tangent" && a.components == 4) tangent = &a;
     }
     for (std::size_t v = 0; v < vertices; ++v) {
       glm::dmat4 blend(0.0);
@@ -253,6 +259,11 @@ struct Walker {
       }
       part.positions[v] = glm::vec3(blend * glm::dvec4(glm::dvec3(part.positions[v]), 1.0));
       const glm::dmat3 linear(blend);
+      if (tangent) {
+        float* t = tangent->values.data() + 4 * v;
+        const glm::dvec4 moved = movedTangent(linear, glm::dvec4(t[0], t[1], t[2], t[3]));
+        for (int c = 0; c < 4; ++c) t[c] = float(moved[c]);  // appendMesh renormalises
+      }
       if (!normal || !(std::fabs(glm::determinant(linear)) > 0.0)) continue;
       float* n = normal->values.data() + 3 * v;
       const glm::dvec3 moved = glm::transpose(glm::inverse(linear)) * glm::dvec3(n[0], n[1], n[2]);

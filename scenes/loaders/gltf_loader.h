@@ -24,7 +24,7 @@ struct GltfContent {
                                     // that several nodes place: the first of them)
 };
 
-// Reads POSITION, NORMAL ("normal"), TEXCOORD_n ("uv", "uv1"...), COLOR_n ("color", "color1"...)
+// Reads POSITION, NORMAL ("normal"), TANGENT ("tangent", 4 components), TEXCOORD_n ("uv", "uv1"...), COLOR_n ("color", "color1"...)
 // and application-specific "_name" attributes ("name"); attributes that
 // not every primitive carries are dropped. Node transforms (matrix or TRS) are applied, and
 // morph targets at the weights in force, and skins as their joints stand. Sparse accessors, KHR_mesh_quantization and

@@ -31,10 +31,11 @@ int setOf(const std::string& name, const std::string& stem) {
   return digit >= '1' && digit <= '7' ? digit - '0' : -1;
 }
 
-// glTF's name for an attribute, as the loader names them back: NORMAL, TEXCOORD_n ("uv",
+// glTF's name for an attribute, as the loader names them back: NORMAL, TANGENT, TEXCOORD_n ("uv",
 // "uv1"...), COLOR_n ("color", "color1"...), else application-specific ("_name").
 std::string semanticOf(const Attribute& a) {
   if (a.name == "normal" && a.components == 3) return "NORMAL";
+  if (a.name == "tangent" && a.components == 4) return "TANGENT";
   if (const int set = setOf(a.name, "uv"); set >= 0 && a.components == 2) return "TEXCOORD_" + std::to_string(set);
   if (const int set = setOf(a.name, "color"); set >= 0 && (a.components == 3 || a.components == 4)) {
     return "COLOR_" + std::to_string(set);

@@ -395,6 +395,52 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
                        ExitCode::kBadInput, {"meshes[0].primitives[0].targets[1]", "TEXCOORD_0 count differs"}, "bad target");
 }
 
+// A tangent as glTF stores it: xyz and the bitangent's sign w (the Mesh's "tangent", 4 components).
+void expectTangents(const Mesh& mesh, const std::vector<float>& expected, const std::string& what) {
+  const Attribute* tangent = mesh.findAttribute("tangent");
+  ASSERT_NE(tangent, nullptr) << what;
+  ASSERT_EQ(tangent->components, 4) << what;
+  ASSERT_EQ(tangent->values.size(), expected.size()) << what;
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(tangent->values[i], expected[i], 1e-7f) << what << ", value " << i;
+}
+
+TEST(GltfLoader, TangentsAreReadMorphedAndMovedAsDirectionsThatKeepTheirBitangentSign) {
+  TempDir dir;
+  GltfBuilder b;
+  const int base = b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  const int tangents = b.view(bytesOf<float>({1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}));
+  const int displaced = b.view(bytesOf<float>({0, 1, 0, 0, 0, 0, 0, 0, 0}));  // target 0: vertex 0's tangent (VEC3)
+  b.accessor(denseVec3(base, 3));
+  b.accessor(dense(tangents, 3, "VEC4"));
+  b.accessor(denseVec3(displaced, 3));
+  const std::string primitive = R"("attributes": {"POSITION": 0, "TANGENT": 1}, "targets": [{"TANGENT": 2}])";
+  const float r = float(1 / std::sqrt(2.0)), s = float(1 / std::sqrt(5.0));
+  expectTangents(loadGltf(dir.write("plain.gltf", b.text(primitive))).mesh, {1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}, "as stored");
+  // The displacement moves xyz (renormalised after), never w.
+  expectTangents(loadGltf(dir.write("morphed.gltf", b.text(primitive, R"(, "weights": [1])"))).mesh,
+                 {r, r, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}, "morphed");
+  // A node that mirrors x (scale -2, 1, 1) turns xyz with it, and flips w so that the bitangent
+  // cross(normal, xyz) * w still points where the mirror took it.
+  expectTangents(loadGltf(dir.write("mirrored.gltf", b.text(primitive, R"(, "weights": [1])", "", R"(, "scale": [-2, 1, 1])"))).mesh,
+                 {-2 * s, s, 0, -1, -1, 0, 0, -1, 0, 1, 0, 1}, "mirrored");
+  // A turn a quarter about z keeps w.
+  expectTangents(loadGltf(dir.write("turned.gltf", b.text(primitive, "", "", R"(, "rotation": [0, 0, 0.7071067811865476, 0.7071067811865476])"))).mesh,
+                 {0, 1, 0, 1, 0, 1, 0, 1, -1, 0, 0, -1}, "turned");
+  // Written back by export as TANGENT, and read again.
+  const Mesh exported = loadGltf(dir.write("again.gltf", gltfFromScene(loadScene(dir.path() / "plain.gltf"), false))).mesh;
+  expectTangents(exported, {1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}, "exported and read back");
+
+  // Quantised (normalised BYTE) only where the file uses KHR_mesh_quantization.
+  GltfBuilder q;
+  q.accessor(denseVec3(q.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})), 3));
+  q.accessor(dense(q.view(bytesOf<std::int8_t>({127, 0, 0, 127, 0, 127, 0, -127, 0, 0, -128, 127})), 3, "VEC4", 5120, R"(, "normalized": true)"));
+  const std::string qp = R"("attributes": {"POSITION": 0, "TANGENT": 1})";
+  testing::expectError([&] { loadGltf(dir.write("raw.gltf", q.text(qp))); }, ExitCode::kBadInput,
+                       {"accessors[1]", "normalised BYTE components are not allowed for TANGENT"}, "quantised tangent");
+  expectTangents(loadGltf(dir.write("quantised.gltf", q.text(qp, "", R"(, "extensionsUsed": ["KHR_mesh_quantization"])"))).mesh,
+                 {1, 0, 0, 1, 0, 1, 0, -1, 0, 0, -1, 1}, "quantised");
+}
+
 TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
   TempDir dir;
   GltfBuilder b;
@@ -574,8 +620,9 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
   b.accessor(dense(joints1, 3, "VEC4", 5123));
   b.accessor(dense(weights1, 3, "VEC4"));
   b.accessor(dense(bind, 2, "MAT4"));
+  b.accessor(dense(b.view(bytesOf<float>({1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1})), 3, "VEC4"));
   const std::string primitive =
-      R"("attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 5})";
+      R"("attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 5, "TANGENT": 7})";
   // Node 0 holds the mesh (its translation must not apply); nodes 1 and 2 are the joints, 2 a
   // child of 1. `joint2` is node 2's transform.
   auto file = [&](const std::string& joint2, const std::string& skin = R"({"joints": [1, 2], "inverseBindMatrices": 6})") {
@@ -601,6 +648,12 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
   EXPECT_NEAR(n[7], -1.0f, 1e-6f);
   EXPECT_NEAR(n[8], 0.0f, 1e-6f);
   EXPECT_EQ(n[2], 1.0f) << "vertex 0 stays on joint 1, which does not turn";
+  const std::vector<float>& t = mesh.findAttribute("tangent")->values;  // vertex 2's (0, 1, 0) turns to +z
+  EXPECT_EQ(std::vector<float>(t.begin(), t.begin() + 4), (std::vector<float>{1, 0, 0, 1}));
+  EXPECT_NEAR(t[8], 0.0f, 1e-6f);
+  EXPECT_NEAR(t[9], 0.0f, 1e-6f);
+  EXPECT_NEAR(t[10], 1.0f, 1e-6f);
+  EXPECT_EQ(t[11], -1.0f);
 
   testing::expectError([&] { loadGltf(dir.write("few.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1]})"))); },
                        ExitCode::kBadInput, {"accessors[2]", "joint 1 of vertex 1 is not below the skin's 1 joints"},
