@@ -152,6 +152,7 @@ struct Walker {
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, semantic + " count differs from POSITION count");
       }
+      morph(primitive, weights, semantic.c_str(), gltf::Use::kCustom, components, values, where);
       part.attributes.push_back({name, components, std::move(values)});
     }
     std::vector<unsigned> order;

@@ -373,14 +373,18 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
   b.accessor(dense(uvs, 3, "VEC2"));
   b.accessor(R"({"componentType": 5126, "count": 3, "type": "VEC3")" + sparse(1, ti, 5121, tv) + "}");
   b.accessor(dense(duv, 3, "VEC2"));
+  // An application-specific attribute, "_speed", which target 1 displaces too.
+  b.accessor(dense(b.view(bytesOf<float>({1, 2, 3})), 3, "SCALAR"));
+  b.accessor(dense(b.view(bytesOf<float>({10, 20, -30})), 3, "SCALAR"));
   const std::string primitive =
-      R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "targets": [{"POSITION": 2}, {"TEXCOORD_0": 3}])";
+      R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1, "_speed": 4}, "targets": [{"POSITION": 2}, {"TEXCOORD_0": 3, "_speed": 5}])";
 
   Mesh mesh = loadGltf(dir.write("rest.gltf", b.text(primitive))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "no weights: the base shape");
   mesh = loadGltf(dir.write("mesh.gltf", b.text(primitive, R"(, "weights": [0.5, 1])"))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}}, "the mesh's weights");
   EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0.5f, 0, 1.5f, 0, 0.5f, 1}));
+  EXPECT_EQ(mesh.findAttribute("speed")->values, (std::vector<float>{11, 22, -27}));
   mesh = loadGltf(dir.write("node.gltf", b.text(primitive, R"(, "weights": [0.5, 1])", "", R"(, "weights": [1.5, 0])"))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 4, 0}}, "the node's weights override the mesh's");
   EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0, 0, 1, 0, 0, 1}));
