@@ -378,6 +378,7 @@ struct Walker {
     GltfCamera& out = content.cameras.emplace_back();
     out.index = index;
     out.name = camera.name;
+    out.type = camera.type;
     const std::string at = path + ": cameras[" + std::to_string(index) + "]";
     if (camera.type != "perspective") {
       out.refusal = at + ": is " + camera.type + "; only perspective cameras are supported";
@@ -507,13 +508,18 @@ const GltfCamera* selectGltfCamera(const GltfContent& content, const std::string
   for (const GltfCamera& camera : content.cameras) {
     if (digits ? camera.index == std::stoi(selector) : camera.name == selector) return &camera;
   }
-  std::string placed;
-  for (const GltfCamera& camera : content.cameras) {
-    placed += (placed.empty() ? "" : ", ") + std::to_string(camera.index) +
-              (camera.name.empty() ? std::string() : " (\"" + camera.name + "\")");
-  }
   throw usageError("--camera " + selector + ": " + path + " places no such camera; " +
-                   (placed.empty() ? std::string("it places none") : "it places " + placed));
+                   (content.cameras.empty() ? std::string("it places none") : "it places " + listGltfCameras(content)));
+}
+
+std::string listGltfCameras(const GltfContent& content) {
+  std::string list;
+  for (const GltfCamera& camera : content.cameras) {
+    list += (list.empty() ? "" : ", ") + std::to_string(camera.index);
+    if (!camera.name.empty()) list += " \"" + camera.name + "\"";
+    if (!camera.spec) list += camera.type != "perspective" ? " (" + camera.type + ")" : std::string(" (unusable)");
+  }
+  return list;
 }
 
 }  // namespace rc

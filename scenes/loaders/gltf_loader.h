@@ -14,6 +14,7 @@ namespace rc {
 struct GltfCamera {
   int index = -1;                  // in the file's `cameras`
   std::string name;                // its `name`, or empty
+  std::string type;                // "perspective", "orthographic" (as the file says)
   std::optional<CameraSpec> spec;  // the camera, where rastercheck can render through it
   std::string refusal;             // otherwise why not, naming the file and the place
 };
@@ -35,6 +36,10 @@ struct GltfContent {
 // or one whose node collapses its view, is listed with its refusal.
 // Throws ioError / badInput naming the file and the place (JSON path or byte offset).
 GltfContent loadGltf(const std::string& path);
+
+// The cameras the file places, for a person choosing one: `0 "side", 1 "top" (orthographic)`,
+// each that cannot be used marked with why (its type, or "unusable").
+std::string listGltfCameras(const GltfContent& content);
 
 // The camera `selector` names: its index in the file's `cameras` or its name; empty, the
 // first placed. nullptr when the selector is empty and the file places no camera. Throws

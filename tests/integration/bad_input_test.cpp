@@ -156,7 +156,7 @@ TEST(BadInput, GltfAndGlbFiles) {
                                             {"name": "top", "type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 9}}])"));
   EXPECT_EQ(rastercheck("check -q " + cameras + " --camera 0").exitCode, 0);
   expectRefusedCheck(dir, cameras, 3, "cameras.gltf: cameras[1]: is orthographic", "--camera top");
-  expectRefusedCheck(dir, cameras, 2, "--camera 2: " + cameras + " places no such camera; it places 0, 1 (\"top\")", "--camera 2");
+  expectRefusedCheck(dir, cameras, 2, "--camera 2: " + cameras + " places no such camera; it places 0, 1 \"top\" (orthographic)", "--camera 2");
   std::string json = gltf("x.bin", 3, 3);
   while (json.size() % 4) json += ' ';
   const std::string glbBody = uint32le(std::uint32_t(json.size())) + "JSON" + json;

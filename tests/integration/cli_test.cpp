@@ -49,6 +49,29 @@ TEST(Cli, HelpAndScenesExitZero) {
   }
 }
 
+TEST(Cli, ScenesDescribesTheScenesGivenAsTheyWouldBeRendered) {
+  const rc::testing::TempDir dir;
+  const std::string obj = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\n");
+  const CliRun r = run("scenes cube " + obj + " --size 320x200");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const std::string& line : {std::string("cube\n"), std::string("12 triangles, 24 vertices, a closed solid"),
+                                  std::string("attributes: uv (2)"), obj + "\n  mesh with a framing camera\n  2 triangles, 4 vertices\n",
+                                  std::string("size=320x200")}) {
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  }
+  const std::string data = rc::testing::sharedData();
+  if (!data.empty()) {  // the Khronos sample places a perspective and an orthographic camera
+    const CliRun cameras = run("scenes " + data + "/gltf/Cameras.gltf");
+    EXPECT_EQ(cameras.exitCode, 0) << cameras.output;
+    EXPECT_NE(cameras.output.find("through its cameras[0] (it places 0, 1 (orthographic))"), std::string::npos) << cameras.output;
+    EXPECT_EQ(run("scenes " + data + "/gltf/Cameras.gltf --camera 1").exitCode, 3);
+  }
+  EXPECT_EQ(run("scenes cube --camera 0").exitCode, 2);
+  const CliRun missing = run("scenes cube " + (dir.path() / "missing.obj").string());
+  EXPECT_EQ(missing.exitCode, 4) << missing.output;
+  EXPECT_EQ(missing.output.find("cube\n"), std::string::npos) << "nothing is printed before every scene has loaded";
+}
+
 TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
   const rc::testing::TempDir temp;  // removed at the end of the test
   const fs::path& dir = temp.path();

@@ -142,7 +142,7 @@ TEST(GltfLoader, CameraOptionChoosesAmongTheFilesCamerasAndAnUnusableOneIsRefuse
   for (const char* selector : {"2", "Side", "-1"}) {
     o.camera = selector;
     testing::expectError([&] { loadScene(path, o); }, ExitCode::kUsage,
-                         {std::string("--camera ") + selector, "two.gltf", "0 (\"flat\"), 1 (\"side\")"}, selector);
+                         {std::string("--camera ") + selector, "two.gltf", "it places 0 \"flat\" (orthographic), 1 \"side\""}, selector);
   }
   // --eye and --target replace the unusable camera's pose: the mesh is framed from there.
   o.camera.clear();
