@@ -2,7 +2,10 @@
 #include "scenes/mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "core/error.h"
 
@@ -139,5 +142,47 @@ void validateMesh(const Mesh& mesh, const std::string& where) {
     }
   }
 }
+
+std::string closedSolidProblem(const Mesh& mesh) {
+  std::map<std::array<float, 3>, unsigned> weld;  // +0.0f added: -0 and +0 weld
+  std::vector<unsigned> id(mesh.positions.size());
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3 p = mesh.positions[i];
+    id[i] = weld.emplace(std::array<float, 3>{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}, unsigned(weld.size())).first->second;
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  const glm::dvec3 c = 0.5 * (lo + hi);
+  std::vector<std::pair<unsigned, unsigned>> edges;
+  double solidAngle = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::uvec3 tri = mesh.triangles[t];
+    const unsigned v[3] = {id[tri.x], id[tri.y], id[tri.z]};
+    for (int k = 0; k < 3; ++k) edges.emplace_back(v[k], v[(k + 1) % 3]);
+    const glm::dvec3 a = glm::dvec3(mesh.positions[tri.x]) - c, b = glm::dvec3(mesh.positions[tri.y]) - c,
+                     d = glm::dvec3(mesh.positions[tri.z]) - c;
+    const double det = glm::dot(a, glm::cross(b, d));
+    if (!(det > 0.0)) return "triangle " + std::to_string(t) + " does not face away from the centre";
+    // Van Oosterom and Strackee: tan(omega / 2) = det / (|a||b||d| + (a.b)|d| + (a.d)|b| + (b.d)|a|).
+    const double la = glm::length(a), lb = glm::length(b), ld = glm::length(d);
+    solidAngle += 2.0 * std::atan2(det, la * lb * ld + glm::dot(a, b) * ld + glm::dot(a, d) * lb + glm::dot(b, d) * la);
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto [a, b] = edges[i];
+    if (i + 1 < edges.size() && edges[i + 1] == edges[i]) {
+      return "edge " + std::to_string(a) + "-" + std::to_string(b) + " is used twice in one direction";
+    }
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) {
+      return "edge " + std::to_string(a) + "-" + std::to_string(b) + " has no opposite: the surface is open";
+    }
+  }
+  if (std::fabs(solidAngle - 4.0 * M_PI) > 1e-6) {
+    return "the solid angles sum to " + std::to_string(solidAngle) + ", not 4 pi";
+  }
+  return "";
+}
+
 
 }  // namespace rc

@@ -23,8 +23,9 @@ struct Mesh {
   // The triangles bound a solid: the surface is closed, does not cross itself, and every
   // triangle is counter-clockwise seen from outside. A ray that starts outside the solid then
   // meets a front face first, so the rasterizer may cull back faces (docs/rasterizer.md,
-  // "Back faces"). Only a scene that guarantees it by construction sets it; the tests check
-  // it for every built-in scene that does (tests/scenes/closed_solid_test.cpp).
+  // "Back faces"). Only a scene that guarantees it by construction sets it, or a file that
+  // claims it and passes closedSolidProblem; the tests check it for every built-in scene that
+  // sets it (tests/scenes/closed_solid_test.cpp).
   bool closedSolid = false;
 
   std::size_t vertexCount() const { return positions.size(); }
@@ -32,6 +33,19 @@ struct Mesh {
   const Attribute* findAttribute(const std::string& name) const;
   Attribute& addAttribute(const std::string& name, int components);  // sized for the vertices
 };
+
+// Empty when `mesh` bounds a solid that is star-shaped about the centre c of its bounding box,
+// else the first problem found. Sufficient for Mesh::closedSolid:
+//  1. closed and consistently wound: with vertices welded by position, every directed edge
+//     (a, b) occurs once and its reverse (b, a) once;
+//  2. every triangle faces away from c: det[p0 - c, p1 - c, p2 - c] > 0, so seen from c each
+//     triangle is clockwise and seen from outside counter-clockwise;
+//  3. the solid angles the triangles subtend at c sum to 4 pi.
+// By 2, projecting the surface from c onto a sphere around c is orientation-preserving on every
+// triangle; by 1 it is then a covering of the sphere, of degree 1 by 3: each ray from c
+// crosses the surface once. So the surface does not cross itself, and a ray from outside
+// enters the solid (through a front face) before it can leave it.
+std::string closedSolidProblem(const Mesh& mesh);
 
 // 1 to 64 of [A-Za-z0-9_]: what an attribute's name may be, since it names EXR channels.
 bool validAttributeName(const std::string& name);

@@ -499,6 +499,14 @@ GltfContent loadGltf(const std::string& path) {
   for (int root : roots) walker.visit(root, glm::dmat4(1.0), 0);
   if (walker.content.mesh.triangles.empty()) throw badInput(path, "no triangle primitives in the scene");
   validateMesh(walker.content.mesh, path);
+  // A file whose every mesh claims to bound a solid (as `rastercheck export` writes a closed
+  // built-in scene) is believed once the scene it makes passes the check; else its back faces
+  // are drawn, which is always safe.
+  const bool claimed = std::all_of(model.meshes.begin(), model.meshes.end(), [](const tinygltf::Mesh& m) {
+    return m.extras.IsObject() && m.extras.Has("rastercheck_closed_solid") && m.extras.Get("rastercheck_closed_solid").IsBool() &&
+           m.extras.Get("rastercheck_closed_solid").Get<bool>();
+  });
+  walker.content.mesh.closedSolid = claimed && closedSolidProblem(walker.content.mesh).empty();
   return std::move(walker.content);
 }
 

@@ -102,6 +102,9 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
                       {"width", spec.width},
                       {"height", spec.height}};
 
+  json gltfMesh = {{"name", scene.name}, {"primitives", {{{"attributes", attributes}, {"indices", indices}, {"mode", 4}}}}};
+  // A claim the loader checks (closedSolidProblem) before it culls back faces.
+  if (scene.mesh.closedSolid) gltfMesh["extras"] = {{"rastercheck_closed_solid", true}};
   json buffer = {{"byteLength", d.bin.size()}};
   if (!binary) buffer["uri"] = "data:application/octet-stream;base64," + base64(d.bin);
   const json doc = {
@@ -109,7 +112,7 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
       {"scene", 0},
       {"scenes", {{{"name", scene.name}, {"nodes", {0, 1}}}}},
       {"nodes", {{{"name", scene.name}, {"mesh", 0}}, {{"name", "camera"}, {"camera", 0}, {"matrix", matrix}}}},
-      {"meshes", {{{"name", scene.name}, {"primitives", {{{"attributes", attributes}, {"indices", indices}, {"mode", 4}}}}}}},
+      {"meshes", {gltfMesh}},
       {"cameras", {{{"type", "perspective"}, {"perspective", perspective}, {"extras", {{"rastercheck_camera", exact}}}}}},
       {"buffers", {buffer}},
       {"bufferViews", d.views},

@@ -709,14 +709,13 @@ TEST(GltfExport, EveryBuiltinSceneReadsBackAsTheSameSceneAndRendersTheSameBits) 
     EXPECT_EQ(d.height, c.height) << spec;
 
     // Where the normals moved, the renders' normal channels may too; every other bit is the same.
-    // A file does not say that its mesh is a closed solid, so its back faces are drawn: the
-    // built-in scene is drawn so too here (culling may move a silhouette pixel's winner).
+    // A closed solid stays one (the file claims it, and the loader checks the claim), so both
+    // are drawn with the same back faces culled (culling may move a silhouette pixel's winner).
     Scene same = back;
     same.mesh.attributes = scene.mesh.attributes;
-    EXPECT_FALSE(back.mesh.closedSolid) << spec;
+    EXPECT_EQ(back.mesh.closedSolid, scene.mesh.closedSolid) << spec;
     RasterOptions raster;
     raster.threads = 2;
-    raster.culling = Culling::kNone;
     ReferenceOptions reference;
     reference.threads = 2;
     EXPECT_EQ(testing::differingChannels(rasterize(same, raster), rasterize(scene, raster)), std::vector<std::string>{})
@@ -725,6 +724,29 @@ TEST(GltfExport, EveryBuiltinSceneReadsBackAsTheSameSceneAndRendersTheSameBits) 
               std::vector<std::string>{})
         << spec << ": reference";
   }
+}
+
+TEST(GltfExport, AClosedSolidIsBelievedOnlyWhereTheMeshPassesTheCheck) {
+  TempDir dir;
+  const Scene cube = makeBuiltinScene("cube");
+  ASSERT_TRUE(cube.mesh.closedSolid);
+  nlohmann::json doc = nlohmann::json::parse(gltfFromScene(cube, false));
+  EXPECT_EQ(doc["meshes"][0]["extras"]["rastercheck_closed_solid"], true);
+  EXPECT_TRUE(loadScene(dir.write("cube.gltf", doc.dump())).mesh.closedSolid);
+  doc["meshes"][0]["extras"]["rastercheck_closed_solid"] = "yes";  // not the boolean true
+  EXPECT_FALSE(loadScene(dir.write("cube-string.gltf", doc.dump())).mesh.closedSolid);
+  // The claim on a mesh that does not bound a solid (the floor, an open quad) is not believed.
+  const Scene floor = makeBuiltinScene("floor");
+  ASSERT_FALSE(floor.mesh.closedSolid);
+  doc = nlohmann::json::parse(gltfFromScene(floor, false));
+  EXPECT_FALSE(doc["meshes"][0].contains("extras"));
+  doc["meshes"][0]["extras"]["rastercheck_closed_solid"] = true;
+  EXPECT_FALSE(loadScene(dir.write("floor.gltf", doc.dump())).mesh.closedSolid);
+  // Nor on a solid put in twice by a second node: closed and outward, but it wraps its centre twice.
+  doc = nlohmann::json::parse(gltfFromScene(cube, false));
+  doc["scenes"][0]["nodes"].push_back(2);
+  doc["nodes"].push_back({{"mesh", 0}});
+  EXPECT_FALSE(loadScene(dir.write("twice.gltf", doc.dump())).mesh.closedSolid);
 }
 
 TEST(GltfExport, ACameraEditedAfterExportWinsOverTheExactOneKeptInExtras) {
