@@ -70,6 +70,7 @@ struct Walker {
   gltf::AccessorReader reader;
   GltfContent content;
   std::set<int> onPath;  // nodes on the current root-to-node path: a repeat is a cycle
+  std::vector<char> cameraPlaced;  // per camera: already met in the hierarchy
 
   // Adds the primitive's morph targets' displacements of `name` to `values` at `weights` (every
   // target is read, so a bad one is refused even at weight 0). A displacement has `components`
@@ -371,9 +372,9 @@ struct Walker {
 
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
     if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
-    for (const GltfCamera& placed : content.cameras) {
-      if (placed.index == index) return;  // placed again by a later node: the first placement counts
-    }
+    if (cameraPlaced.empty()) cameraPlaced.assign(model.cameras.size(), 0);
+    if (cameraPlaced[std::size_t(index)]) return;  // placed again by a later node: the first placement counts
+    cameraPlaced[std::size_t(index)] = 1;
     const tinygltf::Camera& camera = model.cameras[index];
     GltfCamera& out = content.cameras.emplace_back();
     out.index = index;
@@ -479,7 +480,7 @@ GltfContent loadGltf(const std::string& path) {
   if (!unread.empty()) throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + unread);
   gltf::decodeMeshopt(model, meshopt, path);
 
-  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}, {}};
+  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}, {}, {}};
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -521,8 +522,14 @@ const GltfCamera* selectGltfCamera(const GltfContent& content, const std::string
 }
 
 std::string listGltfCameras(const GltfContent& content) {
+  constexpr std::size_t kListed = 16;  // a file may place any number: a message stays one line
   std::string list;
-  for (const GltfCamera& camera : content.cameras) {
+  for (std::size_t i = 0; i < content.cameras.size(); ++i) {
+    if (i == kListed) {
+      list += " and " + std::to_string(content.cameras.size() - kListed) + " more";
+      break;
+    }
+    const GltfCamera& camera = content.cameras[i];
     list += (list.empty() ? "" : ", ") + std::to_string(camera.index);
     if (!camera.name.empty()) list += " \"" + camera.name + "\"";
     if (!camera.spec) list += camera.type != "perspective" ? " (" + camera.type + ")" : std::string(" (unusable)");

@@ -38,7 +38,7 @@ struct GltfContent {
 GltfContent loadGltf(const std::string& path);
 
 // The cameras the file places, for a person choosing one: `0 "side", 1 "top" (orthographic)`,
-// each that cannot be used marked with why (its type, or "unusable").
+// each that cannot be used marked with why (its type, or "unusable"); past 16, how many more.
 std::string listGltfCameras(const GltfContent& content);
 
 // The camera `selector` names: its index in the file's `cameras` or its name; empty, the

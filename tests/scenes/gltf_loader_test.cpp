@@ -164,6 +164,18 @@ TEST(GltfLoader, CameraOptionChoosesAmongTheFilesCamerasAndAnUnusableOneIsRefuse
   const std::string bare = dir.write("bare.gltf", gltfText(dataUri(triangleBytes())));
   EXPECT_EQ(loadScene(bare).mesh.triangleCount(), 1u);
   testing::expectError([&] { loadScene(bare, other); }, ExitCode::kUsage, {"bare.gltf", "places none"}, "bare");
+  // A file may place any number of cameras; a message lists 16 and counts the rest.
+  nlohmann::json many = nlohmann::json::parse(gltfText(dataUri(triangleBytes())));
+  for (int i = 0; i < 20; ++i) {
+    many["cameras"].push_back({{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}});
+    many["nodes"].push_back({{"camera", i}, {"translation", {0, 0, 3}}});
+    many["scenes"][0]["nodes"].push_back(i + 1);
+  }
+  other.camera = "20";
+  testing::expectError([&] { loadScene(dir.write("many.gltf", many.dump()), other); }, ExitCode::kUsage,
+                       {"it places 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 and 4 more"}, "many");
+  other.camera = "19";
+  EXPECT_EQ(loadScene(dir.path() / "many.gltf", other).camera.spec().eye, glm::dvec3(0, 0, 3));
 }
 
 std::string glb(const std::string& json, const std::string& bin, std::uint32_t declaredLength = 0) {
