@@ -34,8 +34,7 @@ Scene gltfScene(const std::string& spec, const SceneOverrides& o) {
   GltfContent content = loadGltf(spec);
   const GltfCamera* chosen = selectGltfCamera(content, o.camera, spec);
   if (!chosen) return meshScene(spec, std::move(content.mesh), std::nullopt, "glTF mesh with a framing camera", o);
-  std::string which = "cameras[" + std::to_string(chosen->index) + "]" +
-                      (chosen->name.empty() ? std::string() : " \"" + chosen->name + "\"");
+  std::string which = gltfCameraName(*chosen);
   if (content.cameras.size() > 1) which += " (it places " + listGltfCameras(content) + ")";
   if (chosen->spec) return meshScene(spec, std::move(content.mesh), chosen->spec, "glTF scene through its " + which, o);
   if (!(o.eye && o.target)) {

@@ -511,6 +511,23 @@ GltfContent loadGltf(const std::string& path) {
   return std::move(walker.content);
 }
 
+namespace {
+
+// A file's name for something, as a message shows it: quoted, at most 64 bytes, controls as '?'.
+std::string quotedName(const std::string& name) {
+  std::string shown = name.substr(0, 64);
+  for (char& c : shown) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  }
+  return "\"" + shown + (name.size() > 64 ? "...\"" : "\"");
+}
+
+}  // namespace
+
+std::string gltfCameraName(const GltfCamera& camera) {
+  return "cameras[" + std::to_string(camera.index) + "]" + (camera.name.empty() ? std::string() : " " + quotedName(camera.name));
+}
+
 const GltfCamera* selectGltfCamera(const GltfContent& content, const std::string& selector, const std::string& path) {
   if (selector.empty()) return content.cameras.empty() ? nullptr : &content.cameras.front();
   const bool digits = selector.size() <= 9 && std::all_of(selector.begin(), selector.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -531,7 +548,7 @@ std::string listGltfCameras(const GltfContent& content) {
     }
     const GltfCamera& camera = content.cameras[i];
     list += (list.empty() ? "" : ", ") + std::to_string(camera.index);
-    if (!camera.name.empty()) list += " \"" + camera.name + "\"";
+    if (!camera.name.empty()) list += " " + quotedName(camera.name);
     if (!camera.spec) list += camera.type != "perspective" ? " (" + camera.type + ")" : std::string(" (unusable)");
   }
   return list;

@@ -37,6 +37,9 @@ struct GltfContent {
 // Throws ioError / badInput naming the file and the place (JSON path or byte offset).
 GltfContent loadGltf(const std::string& path);
 
+// "cameras[1] \"side\"": the camera's place and name, as messages show them.
+std::string gltfCameraName(const GltfCamera& camera);
+
 // The cameras the file places, for a person choosing one: `0 "side", 1 "top" (orthographic)`,
 // each that cannot be used marked with why (its type, or "unusable"); past 16, how many more.
 std::string listGltfCameras(const GltfContent& content);

@@ -171,9 +171,11 @@ TEST(GltfLoader, CameraOptionChoosesAmongTheFilesCamerasAndAnUnusableOneIsRefuse
     many["nodes"].push_back({{"camera", i}, {"translation", {0, 0, 3}}});
     many["scenes"][0]["nodes"].push_back(i + 1);
   }
+  many["cameras"][1]["name"] = "a\nb" + std::string(100, 'x');  // shown quoted, on one line, cut at 64 bytes
   other.camera = "20";
   testing::expectError([&] { loadScene(dir.write("many.gltf", many.dump()), other); }, ExitCode::kUsage,
-                       {"it places 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 and 4 more"}, "many");
+                       {"it places 0, 1 \"a?b" + std::string(61, 'x') + "...\", 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 and 4 more"},
+                       "many");
   other.camera = "19";
   EXPECT_EQ(loadScene(dir.path() / "many.gltf", other).camera.spec().eye, glm::dvec3(0, 0, 3));
 }
