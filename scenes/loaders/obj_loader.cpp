@@ -16,18 +16,32 @@
 namespace rc {
 namespace {
 
-// Line numbers of the face statements ("f ..."), to name the place of a bad face.
-std::vector<std::size_t> faceLines(const std::string& text) {
+// tinyobjloader keeps a face's corner count in a byte: a face of 256 corners or more would be
+// read as another face with its indices shifted, so such a face is refused.
+constexpr std::size_t kMaxCorners = 255;
+
+// Line numbers of the face statements ("f ..."), to name the place of a bad face. Throws
+// badInput for a face of more than kMaxCorners corners.
+std::vector<std::size_t> faceLines(const std::string& text, const std::string& path) {
   std::vector<std::size_t> lines;
   std::size_t line = 1;
   bool atLineStart = true;
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (atLineStart) {
       std::size_t j = i;
-      while (j < text.size() && (text[j] == ' ' || text[j] == '\t')) ++j;
-      if (j + 1 < text.size() && text[j] == 'f' && (text[j + 1] == ' ' || text[j + 1] == '\t')) {
+      while (j < text.size() && blank(text[j])) ++j;
+      if (j + 1 < text.size() && text[j] == 'f' && blank(text[j + 1])) {
         lines.push_back(line);
+        std::size_t corners = 0;
+        for (std::size_t k = j + 1; k < text.size() && text[k] != '\n' && text[k] != '\r'; ++k) {
+          if (!blank(text[k]) && blank(text[k - 1])) ++corners;
+        }
+        if (corners > kMaxCorners) {
+          throw badInput(path + ":" + std::to_string(line), "face has " + std::to_string(corners) + " corners; at most " +
+                                                                std::to_string(kMaxCorners) + " are read (split it)");
+        }
       }
       atLineStart = false;
     }
@@ -97,7 +111,7 @@ Mesh loadObj(const std::string& path) {
     throw badInput(path, "not a valid OBJ file: " + reader.Error());
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const std::vector<std::size_t> lines = faceLines(text);
+  const std::vector<std::size_t> lines = faceLines(text, path);
 
   std::size_t faceCount = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) faceCount += shape.mesh.num_face_vertices.size();

@@ -1,6 +1,7 @@
 // OBJ loading: face-varying corners, triangulation, and bad files refused with their line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -94,6 +95,15 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
     testing::expectError([&] { loadObj(path); }, ExitCode::kBadInput, {c.fragment}, c.name);
   }
   testing::expectError([&] { loadObj(dir.file("absent.obj")); }, ExitCode::kIo, {"absent.obj"}, "missing file");
+  // A face of 255 corners is read; one of 256, which tinyobjloader would read as a face of 0
+  // corners with its indices shifted into the next face, is refused naming its line.
+  std::string ring;
+  for (int i = 0; i < 256; ++i) ring += "v " + std::to_string(std::cos(i * 0.0245)) + " " + std::to_string(std::sin(i * 0.0245)) + " 0\n";
+  std::string face = "f";
+  for (int i = 1; i <= 255; ++i) face += " " + std::to_string(i);
+  EXPECT_EQ(loadObj(dir.write("255.obj", ring + face + "\n")).triangleCount(), 253u);
+  testing::expectError([&] { loadObj(dir.write("256.obj", ring + face + " 256\nf 1 2 3\n")); }, ExitCode::kBadInput,
+                       {"256.obj:257", "face has 256 corners; at most 255 are read"}, "256 corners");
 }
 
 // Spot's UVs, against an independent reading of the file: every triangle corner carries the
