@@ -32,6 +32,7 @@ struct CheckArgs {
   bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
+  ExrCompression compression = ExrCompression::kZip;
 };
 
 // The three pictures of a scene, made once and written to every folder that wants them.
@@ -48,11 +49,12 @@ void writePngs(const std::string& dir, const std::string& stem, const ScenePictu
   }
 }
 
-void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r, WrittenOutputs& outputs) {
+void writeExrs(const std::string& dir, const std::string& stem, const CheckResult& r, ExrCompression compression,
+               WrittenOutputs& outputs) {
   const std::string base = (fs::path(dir) / stem).string();
   for (const auto& file : {std::pair{&r.raster, ".raster.exr"}, std::pair{&r.reference, ".reference.exr"},
                            std::pair{&r.heatmap, ".heatmap.exr"}}) {
-    outputs.write(base + file.second, [&](const std::string& path) { writeExr(*file.first, path); });
+    outputs.write(base + file.second, [&](const std::string& path) { writeExr(*file.first, path, compression); });
   }
 }
 
@@ -123,7 +125,7 @@ int runCheck(CheckArgs& args) {
                                                : ScenePictures{};
     if (!args.out.empty()) {
       progress.step(scene.name + ": writing EXR and PNG files");
-      writeExrs(args.out, stem, r, outputs);
+      writeExrs(args.out, stem, r, args.compression, outputs);
       writePngs(args.out, stem, pictures, outputs);
     }
     if (!args.report.empty()) {
@@ -180,6 +182,7 @@ void registerCheck(CLI::App& root, Action& action) {
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   addThresholdOptions(command, args->thresholds);
+  addExrCompressionOption(command, args->compression);
   command->callback([args, &action] { action = [args] { return runCheck(*args); }; });
 }
 

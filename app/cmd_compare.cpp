@@ -17,6 +17,8 @@ namespace {
 struct CompareArgs {
   std::string test, reference, heatmap, heatmapPng, json, junit;
   Thresholds thresholds;
+  ExrCompression compression = ExrCompression::kZip;
+  int threads = 0;
 };
 
 int runCompare(CompareArgs& args) {
@@ -30,6 +32,7 @@ int runCompare(CompareArgs& args) {
   checkOutputs(outputList, {args.test, args.reference});
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
+  setExrThreads(args.threads);
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
@@ -39,7 +42,7 @@ int runCompare(CompareArgs& args) {
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
   WrittenOutputs outputs;
-  outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path); });
+  outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path, args.compression); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
   outputs.writeText(args.json, jsonDocument(reportToJson(report)));
   if (!args.junit.empty()) {
@@ -64,6 +67,10 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--junit", args->junit,
                       "write the verdict as JUnit XML for CI test reports, one test case named by the test image ('-': standard output)");
   addThresholdOptions(command, args->thresholds);
+  command->add_option("--threads", args->threads, "threads decoding and encoding the EXR files, 0 = all cores")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  addExrCompressionOption(command, args->compression);
   command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
 }
 

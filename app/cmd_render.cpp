@@ -16,6 +16,7 @@ struct RenderArgs {
   Backend backend = Backend::kRaster;
   std::string output;
   RenderSettings settings;
+  ExrCompression compression = ExrCompression::kZip;
 };
 
 int runRender(RenderArgs& args) {
@@ -29,7 +30,7 @@ int runRender(RenderArgs& args) {
   const bool raster = args.backend == Backend::kRaster;
   const Framebuffer fb = raster ? rasterize(scene, args.settings.raster) : renderReference(scene, args.settings.reference);
   const double ms = millisecondsSince(start);
-  writeExr(fb, args.output);
+  writeExr(fb, args.output, args.compression);
   std::printf("%s: %s %dx%d, %zu triangles, %.1f ms -> %s\n", scene.name.c_str(), raster ? "raster" : "reference",
               fb.width(), fb.height(), scene.mesh.triangleCount(), ms, args.output.c_str());
   return 0;
@@ -45,6 +46,7 @@ void registerRender(CLI::App& root, Action& action) {
                      "the rasterizer or the Embree reference");
   command->add_option("-o,--output", args->output, "output EXR file")->required();
   addRenderOptions(command, args->settings);
+  addExrCompressionOption(command, args->compression);
   command->callback([args, &action] { action = [args] { return runRender(*args); }; });
 }
 

@@ -130,6 +130,15 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
                     "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }
 
+void addExrCompressionOption(CLI::App* command, ExrCompression& compression) {
+  addChoice<ExrCompression>(command, "--exr-compression", compression,
+                            {{"zip", ExrCompression::kZip}, {"piz", ExrCompression::kPiz},
+                             {"zips", ExrCompression::kZips}, {"rle", ExrCompression::kRle},
+                             {"none", ExrCompression::kNone}},
+                            "lossless codec of the EXR files written: zip, piz (faster and smaller for full frames of "
+                            "tiny triangles), zips, rle, or none (fastest, largest)");
+}
+
 void finishRenderSettings(RenderSettings& s) {
   s.raster.threads = s.threads;
   s.reference.threads = s.threads;

@@ -10,6 +10,7 @@
 
 #include "compare/compare.h"
 #include "core/atomic_file.h"
+#include "core/exr_io.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 #include "scenes/scene.h"
@@ -68,6 +69,8 @@ void addRenderOptions(CLI::App* command, RenderSettings& settings);
 // addRenderOptions includes; for commands that render nothing.
 void addSceneOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
+// --exr-compression, for the commands that write EXR files.
+void addExrCompressionOption(CLI::App* command, ExrCompression& compression);
 
 // Propagates the thread count and checks the combination; throws usageError.
 void finishRenderSettings(RenderSettings& settings);

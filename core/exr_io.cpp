@@ -155,12 +155,31 @@ void setExrThreads(int threads) {
   Imf::setGlobalThreadCount(threads > 1 ? threads : 0);
 }
 
-void writeExr(const Framebuffer& fb, const std::string& path) {
+const char* exrCompressionName(ExrCompression compression) {
+  switch (compression) {
+    case ExrCompression::kNone: return "none";
+    case ExrCompression::kRle: return "rle";
+    case ExrCompression::kZips: return "zips";
+    case ExrCompression::kZip: return "zip";
+    case ExrCompression::kPiz: return "piz";
+  }
+  return "?";
+}
+
+void writeExr(const Framebuffer& fb, const std::string& path, ExrCompression compression) {
   setLimits();
   AtomicOutput out(path);
   try {
     Imf::Header header(fb.width(), fb.height());
-    header.compression() = Imf::ZIP_COMPRESSION;  // lossless for FLOAT and UINT
+    // Every one of these is lossless for FLOAT and UINT.
+    switch (compression) {
+      case ExrCompression::kNone: header.compression() = Imf::NO_COMPRESSION; break;
+      case ExrCompression::kRle: header.compression() = Imf::RLE_COMPRESSION; break;
+      case ExrCompression::kZips: header.compression() = Imf::ZIPS_COMPRESSION; break;
+      case ExrCompression::kZip: header.compression() = Imf::ZIP_COMPRESSION; break;
+      case ExrCompression::kPiz: header.compression() = Imf::PIZ_COMPRESSION; break;
+    }
+    header.zipCompressionLevel() = 1;  // read by zip and zips only; not stored in the file
     Imf::FrameBuffer slices;
     const std::size_t xStride = 4, yStride = 4 * std::size_t(fb.width());
     for (const Channel& c : fb.channels()) {

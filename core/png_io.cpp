@@ -71,6 +71,11 @@ void writePng(const Rgb8Image& image, const std::string& path) {
     png_init_io(png, file);
     png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    // zlib level 3 and the Sub filter alone, in place of level 6 with libpng's choice of filter
+    // per row: on the 1920x1080 pictures of the blob at 1M triangles a preview wrote in 48
+    // instead of 152 ms (27% more bytes) and a heatmap in 51 instead of 229 ms (34% fewer).
+    png_set_compression_level(png, 3);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_write_info(png, info);
     for (int y = 0; y < image.height; ++y) {
       png_write_row(png, &image.pixels[std::size_t(y) * image.width * 3]);

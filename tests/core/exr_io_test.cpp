@@ -1,5 +1,7 @@
 // EXR round trips are bit-exact and invalid files are refused with the right error.
 #include <gtest/gtest.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 
 #include <cmath>
 #include <cstring>
@@ -40,22 +42,33 @@ std::int32_t expectError(const std::string& path) {
   return -1;
 }
 
-TEST(ExrIo, RoundTripIsBitExactForUintAndFloat) {
+TEST(ExrIo, RoundTripIsBitExactForUintAndFloatWithEveryCodec) {
   const testing::TempDir temp;  // removed at the end of the test
-  const fs::path path = temp.path() / "special.exr";
   const Framebuffer original = specialValues();
-  writeExr(original, path.string());
-  const Framebuffer back = readExr(path.string());
-  ASSERT_EQ(back.width(), 7);
-  ASSERT_EQ(back.height(), 3);
-  const Channel* ids = back.find("tri.id");
-  const Channel* values = back.find("bary.b0");
-  ASSERT_TRUE(ids && values);
-  EXPECT_EQ(ids->type, ChannelType::kUint);
-  EXPECT_EQ(values->type, ChannelType::kFloat);
-  EXPECT_EQ(0, std::memcmp(ids->uints.data(), original.find("tri.id")->uints.data(), 21 * 4));
-  EXPECT_EQ(0, std::memcmp(values->floats.data(), original.find("bary.b0")->floats.data(), 21 * 4));
-  EXPECT_EQ(back.attributes.at("rastercheck.scene"), "special values");
+  const std::pair<ExrCompression, Imf::Compression> codecs[] = {
+      {ExrCompression::kZip, Imf::ZIP_COMPRESSION},   {ExrCompression::kPiz, Imf::PIZ_COMPRESSION},
+      {ExrCompression::kZips, Imf::ZIPS_COMPRESSION}, {ExrCompression::kRle, Imf::RLE_COMPRESSION},
+      {ExrCompression::kNone, Imf::NO_COMPRESSION}};
+  for (const auto& [codec, stored] : codecs) {
+    SCOPED_TRACE(exrCompressionName(codec));
+    const fs::path path = temp.path() / (std::string(exrCompressionName(codec)) + ".exr");
+    writeExr(original, path.string(), codec);
+    EXPECT_EQ(Imf::InputFile(path.c_str()).header().compression(), stored);
+    const Framebuffer back = readExr(path.string());
+    ASSERT_EQ(back.width(), 7);
+    ASSERT_EQ(back.height(), 3);
+    const Channel* ids = back.find("tri.id");
+    const Channel* values = back.find("bary.b0");
+    ASSERT_TRUE(ids && values);
+    EXPECT_EQ(ids->type, ChannelType::kUint);
+    EXPECT_EQ(values->type, ChannelType::kFloat);
+    EXPECT_EQ(0, std::memcmp(ids->uints.data(), original.find("tri.id")->uints.data(), 21 * 4));
+    EXPECT_EQ(0, std::memcmp(values->floats.data(), original.find("bary.b0")->floats.data(), 21 * 4));
+    EXPECT_EQ(back.attributes.at("rastercheck.scene"), "special values");
+  }
+  // The default is ZIP.
+  writeExr(original, (temp.path() / "default.exr").string());
+  EXPECT_EQ(Imf::InputFile((temp.path() / "default.exr").c_str()).header().compression(), Imf::ZIP_COMPRESSION);
 }
 
 TEST(ExrIo, TruncatedFileIsBadInput) {

@@ -19,6 +19,8 @@
 #include <iterator>
 #include <sstream>
 #include <vector>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
 
@@ -170,6 +172,41 @@ TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
   EXPECT_EQ(j["families"]["depth"]["max"], 0.0);
   EXPECT_EQ(j["pixels"]["different_triangle"], 0);
   EXPECT_TRUE(fs::exists(dir / "heat.exr"));
+}
+
+// Every command that writes an EXR takes --exr-compression; each file says the codec it was
+// written with, and every codec reads back as the same image (the same figures).
+TEST(Cli, ExrCompressionIsTheOneAskedForAndEveryCodecComparesTheSame) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const auto codecOf = [](const fs::path& path) { return Imf::InputFile(path.c_str()).header().compression(); };
+  const std::string ref = (dir / "ref.exr").string();
+  ASSERT_EQ(run("render floor --backend reference -o " + ref).exitCode, 0);
+  EXPECT_EQ(codecOf(ref), Imf::ZIP_COMPRESSION) << "the default";
+  std::string baseline;
+  for (const auto& [name, codec] : {std::pair{"zip", Imf::ZIP_COMPRESSION}, std::pair{"piz", Imf::PIZ_COMPRESSION},
+                                    std::pair{"zips", Imf::ZIPS_COMPRESSION}, std::pair{"rle", Imf::RLE_COMPRESSION},
+                                    std::pair{"none", Imf::NO_COMPRESSION}}) {
+    SCOPED_TRACE(name);
+    const fs::path raster = dir / (std::string(name) + ".exr"), heat = dir / (std::string(name) + ".heat.exr");
+    const fs::path out = dir / name;
+    ASSERT_EQ(run("render floor --exr-compression " + std::string(name) + " -o " + raster.string()).exitCode, 0);
+    EXPECT_EQ(codecOf(raster), codec);
+    const CliRun r = run("compare " + raster.string() + " " + ref + " --threads 1 --heatmap " + heat.string() +
+                         " --exr-compression " + name);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(codecOf(heat), codec);
+    if (baseline.empty()) baseline = r.output.substr(r.output.find("pixels"));
+    EXPECT_EQ(r.output.substr(r.output.find("pixels")), baseline) << "the same figures whatever the codec";
+    ASSERT_EQ(run("check floor -q --out " + out.string() + " --exr-compression " + name).exitCode, 0);
+    for (const char* file : {"floor.raster.exr", "floor.reference.exr", "floor.heatmap.exr"}) {
+      EXPECT_EQ(codecOf(out / file), codec) << file;
+    }
+  }
+  const CliRun bad = run("render floor --exr-compression dwaa -o " + (dir / "lossy.exr").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("zip|piz|zips|rle|none"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "lossy.exr"));
 }
 
 TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {

@@ -7,7 +7,10 @@
 #include <iterator>
 #include <string>
 
+#include <png.h>
+
 #include "app/options.h"
+#include "core/png_io.h"
 #include "core/error.h"
 #include "tests/test_files.h"
 
@@ -72,6 +75,34 @@ TEST(WrittenOutputs, StandardOutputGetsTheDocumentOnlyOnceEveryFileIsInPlace) {
   EXPECT_EQ(std::distance(fs::directory_iterator(second), fs::directory_iterator()), 1) << "only the folder in the way";
   EXPECT_EQ(std::distance(fs::directory_iterator(temp.path()), fs::directory_iterator()), 4)
       << "report.json, late.json, first.json, second.json: no temporary left";
+}
+
+// The PNG writer's zlib level and filter are its own choice; what it writes must decode to
+// exactly the pixels given, also where the Sub filter's differences wrap around.
+TEST(PngIo, WritesExactlyThePixelsGiven) {
+  const testing::TempDir temp;
+  const std::string path = (temp.path() / "picture.png").string();
+  Rgb8Image image(317, 45, {0, 0, 0});
+  std::uint32_t state = 12345;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const std::uint8_t noise = std::uint8_t(state >> 24);
+      // Smooth ramps, hard steps and noise, row by row.
+      const std::uint8_t r = std::uint8_t(x), g = std::uint8_t(x % 7 == 0 ? 255 : 3 * y), b = y % 3 == 0 ? noise : std::uint8_t(x ^ y);
+      image.set(x, y, {r, g, b});
+    }
+  }
+  writePng(image, path);
+  png_image read{};
+  read.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE(png_image_begin_read_from_file(&read, path.c_str()));
+  read.format = PNG_FORMAT_RGB;
+  ASSERT_EQ(read.width, 317u);
+  ASSERT_EQ(read.height, 45u);
+  std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(read));
+  ASSERT_TRUE(png_image_finish_read(&read, nullptr, pixels.data(), 0, nullptr));
+  EXPECT_EQ(pixels, image.pixels);
 }
 
 }  // namespace
