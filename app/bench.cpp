@@ -189,7 +189,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
           exr.push_back(millisecondsSince(t0));
         }
       }
-      const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr);
+      const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr,
+                                                 setting.raster.threads);
       // Last, since it overwrites the frame's planes.
       std::vector<double> floor;
       for (int r = 0; r < runs; ++r) floor.push_back(writeOutPass(raster, std::uint32_t(r), setting.raster));

@@ -15,7 +15,7 @@ CheckResult checkScene(const Scene& scene, const RenderSettings& settings,
   result.referenceMs = millisecondsSince(start);
   result.report = compareImages(result.raster, scene.name + " (raster)", result.reference,
                                 scene.name + " (reference)", thresholds,
-                                wantHeatmap ? &result.heatmap : nullptr);
+                                wantHeatmap ? &result.heatmap : nullptr, settings.threads);
   return result;
 }
 

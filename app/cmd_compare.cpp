@@ -38,7 +38,8 @@ int runCompare(CompareArgs& args) {
   Framebuffer heatmap;
   const CompareReport report = compareImages(test, args.test, reference, args.reference,
                                              args.thresholds,
-                                             args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap);
+                                             args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap,
+                                             args.threads);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
   WrittenOutputs outputs;
@@ -67,7 +68,7 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--junit", args->junit,
                       "write the verdict as JUnit XML for CI test reports, one test case named by the test image ('-': standard output)");
   addThresholdOptions(command, args->thresholds);
-  command->add_option("--threads", args->threads, "threads decoding and encoding the EXR files, 0 = all cores")
+  command->add_option("--threads", args->threads, "threads decoding and encoding the EXR files and measuring the channel families, 0 = all cores")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   addExrCompressionOption(command, args->compression);

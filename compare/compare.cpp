@@ -11,6 +11,7 @@
 #include "compare/colormap.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace rc {
 
@@ -155,7 +156,7 @@ double attributeRange(const Family& f, const std::vector<PixelClass>& classes) {
 
 CompareReport compareImages(const Framebuffer& test, const std::string& testPath,
                             const Framebuffer& ref, const std::string& refPath,
-                            const Thresholds& thresholds, Framebuffer* heatmap) {
+                            const Thresholds& thresholds, Framebuffer* heatmap, int threads) {
   if (test.width() != ref.width() || test.height() != ref.height()) {
     throw badInput(testPath, "size " + std::to_string(test.width()) + "x" +
                                  std::to_string(test.height()) + " differs from " + refPath + " (" +
@@ -215,22 +216,33 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     }
     ulpPlane = heatmap->addFloat("ulps.bary");
   }
-  std::vector<bool> nonFinite(n, false);
+  // A pixel where some family holds a NaN or Inf, per family (they run in parallel), for the
+  // heatmap's colours only.
+  std::vector<std::vector<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
+  for (auto& flags : nonFiniteOf) flags.assign(n, 0);
+  const std::size_t sameTriangle = report.classCounts[int(PixelClass::kSameTriangle)];
   const int width = test.width();
-  for (std::size_t fi = 0; fi < families.size(); ++fi) {
+  report.families.resize(families.size());
+  // Each family on one thread, in pixel order: its sums are added in the same order whatever
+  // the thread count. The heaviest (bary: three components) comes first.
+  parallelFor(int(families.size()), threads, [&](int index) {
+    const std::size_t fi = std::size_t(index);
     const Family& f = families[fi];
-    FamilyReport fr;
+    FamilyReport& fr = report.families[fi];
     fr.name = f.name;
     fr.bounded = bounded;
     if (f.kind == Family::kAttribute) fr.range = attributeRange(f, classes);
     StatsAccumulator acc, ulps, ratios;
+    acc.reserve(sameTriangle);
+    ulps.reserve(sameTriangle);
+    if (bounded) ratios.reserve(sameTriangle);
     for (std::size_t i = 0; i < n; ++i) {
       const PixelClass c = classes[i];
       if (c == PixelClass::kBothEmpty) continue;
       bool bad = false;
       if (c != PixelClass::kReferenceOnly) bad |= countNonFinite(f.test, i, acc);
       if (!bad && c != PixelClass::kTestOnly) bad |= countNonFinite(f.reference, i, acc);
-      if (bad) nonFinite[i] = true;
+      if (bad && heatmap) nonFiniteOf[fi][i] = 1;
       if (bad || c != PixelClass::kSameTriangle) continue;
       double error = -1.0, tv = 0.0, rv = 0.0, ratio = 0.0, ulp = 0.0;
       for (std::size_t k = 0; k < f.test.size(); ++k) {
@@ -275,8 +287,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                                : thresholds.attribute;
     fr.gated = bounded ? fr.ratio.max : fr.stats.max;
     if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
-    report.families.push_back(fr);
-  }
+  });
 
   // Disagreements, explained where the diagnostics allow (docs/numerics.md).
   std::vector<Explanation> explanations(n, Explanation::kUnexplained);
@@ -357,19 +368,26 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                        : quantity == HeatmapQuantity::kUlps ? "ulps.bary"
                                                                             : "ratio.bary")
                              ->floats.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      classPlane[i] = std::uint32_t(classes[i]);
-      if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
-      const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
-      Rgb colour = nonFinite[i]                                   ? kColourNonFinite
-                   : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
-                   : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
-                   : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
-                   : disagree                                     ? kColourOneSideOnly
-                                                                  : heatColour(shown[i], scale);
-      colour = linearFromSrgb(colour);
-      for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
-    }
+    const int rows = test.height();
+    parallelFor((rows + 15) / 16, threads, [&](int band) {
+      const std::size_t first = std::size_t(band) * 16 * width;
+      const std::size_t last = std::min(n, first + std::size_t(16) * width);
+      for (std::size_t i = first; i < last; ++i) {
+        classPlane[i] = std::uint32_t(classes[i]);
+        if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
+        const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
+        const bool nonFinite =
+            std::any_of(nonFiniteOf.begin(), nonFiniteOf.end(), [i](const auto& flags) { return flags[i] != 0; });
+        Rgb colour = nonFinite                                      ? kColourNonFinite
+                     : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
+                     : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
+                     : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
+                     : disagree                                     ? kColourOneSideOnly
+                                                                    : heatColour(shown[i], scale);
+        colour = linearFromSrgb(colour);
+        for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
+      }
+    });
     heatmap->attributes["rastercheck.heatmap"] =
         std::string("RGB: ") + scale.title + " on a log10 magma scale from 1e" + std::to_string(int(scale.logMin)) +
         " to 1e" + std::to_string(int(scale.logMax)) +

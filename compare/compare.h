@@ -87,8 +87,10 @@ struct CompareReport {
 // Throws badInput (naming the file and channel) when the images are not comparable: sizes
 // differ, a required or attribute channel is missing in one of them, or has the wrong type.
 // `heatmap`, when non-null, receives error.* channels, class.id and a false-colour RGB.
+// The channel families are measured on up to `threads` threads (0: all cores), each family on
+// one, in pixel order, so every figure is the same whatever the thread count.
 CompareReport compareImages(const Framebuffer& test, const std::string& testPath,
                             const Framebuffer& reference, const std::string& referencePath,
-                            const Thresholds& thresholds, Framebuffer* heatmap);
+                            const Thresholds& thresholds, Framebuffer* heatmap, int threads = 0);
 
 }  // namespace rc

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace rc {
 
@@ -16,14 +18,70 @@ void StatsAccumulator::addError(double error, int x, int y, double test, double 
   }
 }
 
-double percentile(std::vector<float>& values, double p) {
-  if (values.empty()) return 0.0;
-  // Nearest rank: the smallest value with at least p of the values at or below it.
-  std::size_t rank = std::size_t(std::ceil(p * double(values.size())));
-  rank = std::clamp<std::size_t>(rank, 1, values.size());
-  std::nth_element(values.begin(), values.begin() + (rank - 1), values.end());
-  return values[rank - 1];
+namespace {
+
+// A float's bits turned so that unsigned order is the floats' order (-Inf < -0 < +0 < +Inf < NaN).
+std::uint32_t orderedKey(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, 4);
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
 }
+
+float valueOfKey(std::uint32_t key) {
+  const std::uint32_t bits = key & 0x80000000u ? key & 0x7FFFFFFFu : ~key;
+  float value;
+  std::memcpy(&value, &bits, 4);
+  return value;
+}
+
+}  // namespace
+
+std::vector<double> percentiles(const std::vector<float>& values, const std::vector<double>& p) {
+  std::vector<double> result(p.size(), 0.0);
+  const std::size_t n = values.size();
+  if (n == 0) return result;
+  // The 0-based rank of each wanted value: nearest rank ceil(p n), at least 1.
+  std::vector<std::size_t> ranks(p.size());
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    ranks[j] = std::clamp<std::size_t>(std::size_t(std::ceil(p[j] * double(n))), 1, n) - 1;
+  }
+  // Pass 1: how many keys share each top 16 bits; each rank falls in one such bin.
+  std::vector<std::size_t> high(1u << 16, 0);
+  for (const float v : values) ++high[orderedKey(v) >> 16];
+  struct Wanted {
+    std::uint32_t bin;
+    std::size_t rankInBin;
+    std::vector<std::size_t> low;  // pass 2: how many keys of the bin share each low 16 bits
+  };
+  std::vector<Wanted> wanted;
+  std::vector<std::size_t> wantedOf(p.size());
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    std::size_t below = 0;
+    std::uint32_t bin = 0;
+    while (below + high[bin] <= ranks[j]) below += high[bin++];
+    std::size_t w = 0;
+    while (w < wanted.size() && wanted[w].bin != bin) ++w;
+    if (w == wanted.size()) wanted.push_back({bin, 0, std::vector<std::size_t>(1u << 16, 0)});
+    wantedOf[j] = w;
+    ranks[j] -= below;  // now the rank within its bin
+  }
+  for (const float v : values) {
+    const std::uint32_t key = orderedKey(v);
+    for (Wanted& w : wanted) {
+      if (key >> 16 == w.bin) ++w.low[key & 0xFFFFu];
+    }
+  }
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    const Wanted& w = wanted[wantedOf[j]];
+    std::size_t below = 0;
+    std::uint32_t low = 0;
+    while (below + w.low[low] <= ranks[j]) below += w.low[low++];
+    result[j] = valueOfKey(w.bin << 16 | low);
+  }
+  return result;
+}
+
+double percentile(const std::vector<float>& values, double p) { return percentiles(values, {p})[0]; }
 
 FamilyStats StatsAccumulator::finish() {
   FamilyStats s;
@@ -35,10 +93,10 @@ FamilyStats StatsAccumulator::finish() {
     s.mean = sum_ / double(s.count);
     s.rms = std::sqrt(sumSquares_ / double(s.count));
     s.worst = worst_;
-    // Each call re-partitions the whole set, so the order of these calls does not matter.
-    s.p999 = percentile(errors_, 0.999);
-    s.p99 = percentile(errors_, 0.99);
-    s.p50 = percentile(errors_, 0.50);
+    const std::vector<double> p = percentiles(errors_, {0.999, 0.99, 0.50});
+    s.p999 = p[0];
+    s.p99 = p[1];
+    s.p50 = p[2];
   }
   errors_.clear();
   errors_.shrink_to_fit();

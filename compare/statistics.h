@@ -25,6 +25,7 @@ struct FamilyStats {
 // Accumulates per-pixel errors, then summarises them.
 class StatsAccumulator {
  public:
+  void reserve(std::size_t count) { errors_.reserve(count); }  // the most errors to come
   void addError(double error, int x, int y, double test, double reference);
   void addNan() { ++nan_; }
   void addInf() { ++inf_; }
@@ -38,7 +39,11 @@ class StatsAccumulator {
   double max_ = -1.0;
 };
 
-// Nearest-rank percentile (p in [0, 1]) of `values`, reordering them; 0 for an empty set.
-double percentile(std::vector<float>& values, double p);
+// Nearest-rank percentile (p in [0, 1]) of `values`: the smallest value with at least p of the
+// values at or below it; 0 for an empty set. NaN sorts above +Inf, and -0 below +0.
+double percentile(const std::vector<float>& values, double p);
+// The same for several p at once, in two passes over the values whatever their count (a radix
+// select on the values' bits) instead of a partition of the whole set for each.
+std::vector<double> percentiles(const std::vector<float>& values, const std::vector<double>& p);
 
 }  // namespace rc
