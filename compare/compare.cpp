@@ -290,7 +290,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   });
 
   // Disagreements, explained where the diagnostics allow (docs/numerics.md).
-  std::vector<Explanation> explanations(n, Explanation::kUnexplained);
+  std::vector<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
   if (report.explained) {
     const float* depthTest = test.find(channels::kDepth)->floats.data();
     const float* depthRef = ref.find(channels::kDepth)->floats.data();

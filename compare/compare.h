@@ -11,7 +11,7 @@
 
 namespace rc {
 
-enum class PixelClass : std::uint32_t {
+enum class PixelClass : std::uint8_t {
   kBothEmpty = 0,
   kSameTriangle = 1,
   kDifferentTriangle = 2,
@@ -22,7 +22,7 @@ inline constexpr int kPixelClassCount = 5;
 const char* pixelClassName(PixelClass c);
 
 // Why the two paths disagree on the triangle at a pixel (docs/numerics.md, "Disagreements").
-enum class Explanation : std::uint32_t {
+enum class Explanation : std::uint8_t {
   kEdgeBand = 0,     // the centre is within both paths' edge bands of an edge of either triangle
   kDepthTie = 1,     // both hit, and the two depths are within the paths' depth resolutions
   kUnexplained = 2,
