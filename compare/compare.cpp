@@ -225,7 +225,9 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.families.resize(families.size());
   // Each family on one thread, in pixel order: its sums are added in the same order whatever
   // the thread count. The heaviest (bary: three components) comes first.
-  parallelFor(int(families.size()), threads, [&](int index) {
+  // Below about a 256x256 image a thread costs more than it saves.
+  const int workers = n < (std::size_t(1) << 16) ? 1 : threads;
+  parallelFor(int(families.size()), workers, [&](int index) {
     const std::size_t fi = std::size_t(index);
     const Family& f = families[fi];
     FamilyReport& fr = report.families[fi];
@@ -369,7 +371,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                                                             : "ratio.bary")
                              ->floats.data();
     const int rows = test.height();
-    parallelFor((rows + 15) / 16, threads, [&](int band) {
+    parallelFor((rows + 15) / 16, workers, [&](int band) {
       const std::size_t first = std::size_t(band) * 16 * width;
       const std::size_t last = std::min(n, first + std::size_t(16) * width);
       for (std::size_t i = first; i < last; ++i) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 namespace rc {
 
@@ -19,6 +20,10 @@ void StatsAccumulator::addError(double error, int x, int y, double test, double 
 }
 
 namespace {
+
+// Fewer values than this are partitioned per rank; the radix select's histograms (256 KB
+// each) would cost more.
+constexpr std::size_t kRadixSelectFrom = std::size_t(1) << 16;
 
 // A float's bits turned so that unsigned order is the floats' order (-Inf < -0 < +0 < +Inf < NaN).
 std::uint32_t orderedKey(float value) {
@@ -40,18 +45,27 @@ std::vector<double> percentiles(const std::vector<float>& values, const std::vec
   std::vector<double> result(p.size(), 0.0);
   const std::size_t n = values.size();
   if (n == 0) return result;
+  if (n > 0xFFFFFFFFu) throw std::length_error("percentiles: more than 2^32 values");
   // The 0-based rank of each wanted value: nearest rank ceil(p n), at least 1.
   std::vector<std::size_t> ranks(p.size());
   for (std::size_t j = 0; j < p.size(); ++j) {
     ranks[j] = std::clamp<std::size_t>(std::size_t(std::ceil(p[j] * double(n))), 1, n) - 1;
   }
+  if (n < kRadixSelectFrom) {  // a copy partitioned per rank costs less than the histograms
+    std::vector<std::uint32_t> keys(n);
+    for (std::size_t i = 0; i < n; ++i) keys[i] = orderedKey(values[i]);
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      std::nth_element(keys.begin(), keys.begin() + std::ptrdiff_t(ranks[j]), keys.end());
+      result[j] = valueOfKey(keys[ranks[j]]);
+    }
+    return result;
+  }
   // Pass 1: how many keys share each top 16 bits; each rank falls in one such bin.
-  std::vector<std::size_t> high(1u << 16, 0);
+  std::vector<std::uint32_t> high(1u << 16, 0);
   for (const float v : values) ++high[orderedKey(v) >> 16];
   struct Wanted {
     std::uint32_t bin;
-    std::size_t rankInBin;
-    std::vector<std::size_t> low;  // pass 2: how many keys of the bin share each low 16 bits
+    std::vector<std::uint32_t> low;  // pass 2: how many keys of the bin share each low 16 bits
   };
   std::vector<Wanted> wanted;
   std::vector<std::size_t> wantedOf(p.size());
@@ -61,7 +75,7 @@ std::vector<double> percentiles(const std::vector<float>& values, const std::vec
     while (below + high[bin] <= ranks[j]) below += high[bin++];
     std::size_t w = 0;
     while (w < wanted.size() && wanted[w].bin != bin) ++w;
-    if (w == wanted.size()) wanted.push_back({bin, 0, std::vector<std::size_t>(1u << 16, 0)});
+    if (w == wanted.size()) wanted.push_back({bin, std::vector<std::uint32_t>(1u << 16, 0)});
     wantedOf[j] = w;
     ranks[j] -= below;  // now the rank within its bin
   }
