@@ -61,8 +61,9 @@ int runExport(ExportArgs& args) {
     const Scene& scene = scenes[i];
     const std::string document = gltfFromScene(scene, endsWith(paths[i], ".glb"));
     outputs.write(paths[i], [&](const std::string& path) { writeTextFile(path, document); });
-    std::printf("%s: %zu triangles, %zu attributes, %dx%d -> %s\n", scene.name.c_str(), scene.mesh.triangleCount(),
-                scene.mesh.attributes.size(), scene.camera.width(), scene.camera.height(), paths[i].c_str());
+    const std::size_t attributes = scene.mesh.attributes.size();
+    std::printf("%s: %zu triangles, %zu attribute%s, %dx%d -> %s\n", scene.name.c_str(), scene.mesh.triangleCount(),
+                attributes, attributes == 1 ? "" : "s", scene.camera.width(), scene.camera.height(), paths[i].c_str());
   }
   outputs.keep();
   return 0;

@@ -941,6 +941,52 @@ TEST(Cli, ImageIntoATerminalIsRefused) {
 // export: the hard cases as glTF files, which check reads back (with their exact cameras, so
 // the same figures) and another reader, gltfpack, accepts; bad requests are refused before any
 // file or folder appears.
+// docs/your-renderer.md, step by step, with rastercheck's rasterizer standing in for another
+// renderer: an image that carries only what another renderer knows (no diagnostics, no
+// preview) passes on the fixed thresholds; an affine one and one with its rows upside down fail.
+TEST(Cli, AnotherRenderersImageIsJudgedAgainstTheReference) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string scene = (dir / "sphere.glb").string(), ref = (dir / "sphere.reference.exr").string();
+  ASSERT_EQ(run("export sphere -o " + scene).exitCode, 0);
+  const CliRun described = run("scenes " + scene);
+  EXPECT_NE(described.output.find("attributes: normal (3), uv (2)"), std::string::npos) << described.output;
+  EXPECT_NE(described.output.find("camera: eye=(0,0.80000000000000004,2.7999999999999998) target=(0,0,0)"), std::string::npos)
+      << described.output;
+  ASSERT_EQ(run("render " + scene + " --backend reference -o " + ref).exitCode, 0);
+  // What another renderer writes: the ids, barycentrics, depth and attributes, rows from the top.
+  const auto theirs = [&](const std::string& options, bool flipRows) {
+    const std::string raw = (dir / "raw.exr").string(), out = (dir / "yours.exr").string();
+    EXPECT_EQ(run("render " + scene + " --no-diagnostics " + options + " -o " + raw).exitCode, 0);
+    const rc::Framebuffer full = rc::readExr(raw);
+    rc::Framebuffer kept(full.width(), full.height());
+    const int w = full.width(), h = full.height();
+    for (const rc::Channel& c : full.channels()) {
+      if (c.name == "R" || c.name == "G" || c.name == "B") continue;
+      EXPECT_TRUE(c.name.rfind("bound.", 0) != 0 && c.name != "edge.dist" && c.name != "depth.tie") << c.name;
+      const auto row = [&](int y) { return std::size_t(flipRows ? h - 1 - y : y) * std::size_t(w); };
+      if (c.type == rc::ChannelType::kUint) {
+        std::uint32_t* to = kept.addUint(c.name);
+        for (int y = 0; y < h; ++y) std::copy_n(&c.uints[row(y)], w, to + std::size_t(y) * w);
+      } else {
+        float* to = kept.addFloat(c.name);
+        for (int y = 0; y < h; ++y) std::copy_n(&c.floats[row(y)], w, to + std::size_t(y) * w);
+      }
+    }
+    rc::writeExr(kept, out);
+    return run("compare " + out + " " + ref);
+  };
+  const CliRun good = theirs("", false);
+  EXPECT_EQ(good.exitCode, 0) << good.output;
+  EXPECT_NE(good.output.find("0.0002"), std::string::npos) << "the fixed barycentric limit gates\n" << good.output;
+  const CliRun affine = theirs("--mode affine", false);
+  EXPECT_EQ(affine.exitCode, 1) << affine.output;
+  EXPECT_NE(affine.output.find("bary: max error"), std::string::npos) << affine.output;
+  const CliRun flipped = theirs("", true);
+  EXPECT_EQ(flipped.exitCode, 1) << flipped.output;
+  EXPECT_NE(flipped.output.find("different triangle at"), std::string::npos) << flipped.output;
+}
+
 TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
   const rc::testing::TempDir temp;
   const std::string dir = (temp.path() / "exported").string();

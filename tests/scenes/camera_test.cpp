@@ -45,6 +45,24 @@ TEST(Camera, RayThroughPixelProjectsBackToThePixelCentre) {
   }
 }
 
+// docs/your-renderer.md tells a renderer that writes NDC depth z/w (nvdiffrast) how to turn
+// it into depth.z; the formulas must give clip w under rastercheck's own projection.
+TEST(Camera, DepthFollowsFromNdcDepthAsYourRendererGuideSays) {
+  for (double zFar : {100.0, std::numeric_limits<double>::infinity()}) {
+    CameraSpec spec = obliqueSpec();
+    spec.zFar = zFar;
+    const Camera camera(spec);
+    const double n = spec.zNear, f = spec.zFar;
+    for (double t : {0.3, 1.0, 7.5, 60.0, 99.0}) {
+      const CameraRay ray = camera.rayThroughPixel(31, 72);
+      const glm::dvec4 clip = camera.clipFromWorld() * glm::dvec4(ray.origin + t * ray.direction, 1.0);
+      const double ndcZ = clip.z / clip.w;
+      const double depth = std::isinf(f) ? 2.0 * n / (1.0 - ndcZ) : 2.0 * f * n / ((f + n) - ndcZ * (f - n));
+      EXPECT_NEAR(depth, t, 1e-9 * t) << "far " << f;
+    }
+  }
+}
+
 TEST(Camera, RowZeroIsTheTopAndViewSpaceLooksDownMinusZ) {
   CameraSpec spec;  // eye (0,0,5) looking at the origin, up +y
   const Camera camera(spec);
