@@ -49,7 +49,8 @@ std::vector<double> percentiles(const std::vector<float>& values, const std::vec
   // The 0-based rank of each wanted value: nearest rank ceil(p n), at least 1.
   std::vector<std::size_t> ranks(p.size());
   for (std::size_t j = 0; j < p.size(); ++j) {
-    ranks[j] = std::clamp<std::size_t>(std::size_t(std::ceil(p[j] * double(n))), 1, n) - 1;
+    const double rank = std::ceil(p[j] * double(n));  // p outside [0, 1] or NaN: clamped before any cast
+    ranks[j] = !(rank >= 1.0) ? 0 : rank >= double(n) ? n - 1 : std::size_t(rank) - 1;
   }
   if (n < kRadixSelectFrom) {  // a copy partitioned per rank costs less than the histograms
     std::vector<std::uint32_t> keys(n);

@@ -39,7 +39,7 @@ class StatsAccumulator {
   double max_ = -1.0;
 };
 
-// Nearest-rank percentile (p in [0, 1]) of `values`: the smallest value with at least p of the
+// Nearest-rank percentile (p in [0, 1]; outside it or NaN, the nearest end) of `values`: the smallest value with at least p of the
 // values at or below it; 0 for an empty set. NaN sorts above +Inf, and -0 below +0.
 double percentile(const std::vector<float>& values, double p);
 // The same for several p at once, in two passes over the values whatever their count (a radix

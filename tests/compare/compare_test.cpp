@@ -299,6 +299,9 @@ TEST(Percentile, MatchesTheValueAtTheNearestRankOfASortedCopy) {
     }
   }
   EXPECT_EQ(percentiles({}, {0.5, 0.99}), (std::vector<double>{0.0, 0.0}));
+  // p outside [0, 1] (or NaN) is taken as the nearest end.
+  const std::vector<float> three = {3.0f, 1.0f, 2.0f};
+  EXPECT_EQ(percentiles(three, {-0.5, 7.0, std::nan("")}), (std::vector<double>{1.0, 3.0, 1.0}));
 }
 
 }  // namespace
