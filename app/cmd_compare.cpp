@@ -71,6 +71,10 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--threads", args->threads, "threads decoding and encoding the EXR files and measuring the channel families, 0 = all cores")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
+  command->add_option("--attributes", args->thresholds.attributes,
+                      "compare only these attributes (e.g. uv,normal), leaving out any other either image carries; "
+                      "default: every one, each required in both")
+      ->delimiter(',');
   addExrCompressionOption(command, args->compression);
   command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
 }

@@ -50,11 +50,11 @@ std::string formatRatio(double value) {
 }
 
 const Channel& require(const Framebuffer& fb, const std::string& path, const std::string& name,
-                       ChannelType type, const std::string& otherPath) {
+                       ChannelType type, const std::string& otherPath, const std::string& hint = "") {
   const Channel* c = fb.find(name);
   if (!c) {
     throw badInput(path + ": channel " + name,
-                   otherPath.empty() ? "missing" : "missing (present in " + otherPath + ")");
+                   otherPath.empty() ? "missing" : "missing (present in " + otherPath + hint + ")");
   }
   if (c->type != type) {
     throw badInput(path + ": channel " + name, std::string("is ") + channelTypeName(c->type) +
@@ -91,7 +91,8 @@ struct Family {
 };
 
 std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& testPath,
-                                    const Framebuffer& ref, const std::string& refPath) {
+                                    const Framebuffer& ref, const std::string& refPath,
+                                    const std::vector<std::string>& selection) {
   std::vector<Family> families;
   Family bary{"bary", Family::kBary, {}, {}};
   for (const char* name : channels::kBary) {
@@ -113,12 +114,28 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
       if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
     }
   }
+  if (!selection.empty()) {
+    std::map<std::string, std::vector<std::string>> chosen;
+    for (const std::string& name : selection) {
+      const auto it = attributes.find(prefix + name);
+      if (it == attributes.end()) {
+        std::string carried;
+        for (const auto& entry : attributes) carried += (carried.empty() ? "" : ", ") + entry.first.substr(prefix.size());
+        throw usageError("--attributes " + name + ": neither " + testPath + " nor " + refPath + " carries it" +
+                         (carried.empty() ? std::string(" (they carry no attributes)") : " (they carry " + carried + ")"));
+      }
+      chosen.insert(*it);
+    }
+    attributes = std::move(chosen);
+  }
   for (auto& [family, names] : attributes) {
     std::sort(names.begin(), names.end());
     Family f{family, Family::kAttribute, {}, {}};
+    // An attribute one image lacks: say how to compare the rest.
+    const std::string hint = selection.empty() ? "; --attributes compares only those named" : "";
     for (const std::string& name : names) {
-      f.test.push_back(require(test, testPath, name, ChannelType::kFloat, refPath).floats.data());
-      f.reference.push_back(require(ref, refPath, name, ChannelType::kFloat, testPath).floats.data());
+      f.test.push_back(require(test, testPath, name, ChannelType::kFloat, refPath, hint).floats.data());
+      f.reference.push_back(require(ref, refPath, name, ChannelType::kFloat, testPath, hint).floats.data());
     }
     families.push_back(f);
   }
@@ -164,7 +181,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
   const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
-  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath);
+  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds.attributes);
 
   CompareReport report;
   report.testPath = testPath;

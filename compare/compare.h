@@ -53,6 +53,10 @@ struct Thresholds {
   // that misses the mesh) unless this says it may pass.
   bool allowEmpty = false;
   HeatmapQuantity heatmap = HeatmapQuantity::kError;
+  // The attribute families compared, by name ("uv" for attr.uv.*): each must be in both
+  // images, and the others either image carries are left out. Empty: every one either image
+  // carries, each required in both.
+  std::vector<std::string> attributes = {};
 };
 
 struct FamilyReport {

@@ -60,7 +60,8 @@ nlohmann::json reportToJson(const CompareReport& r) {
                      {"attribute", r.thresholds.attribute},
                      {"disagreement", r.thresholds.disagreement},
                      {"coverage", r.thresholds.coverage},
-                     {"allow_empty", r.thresholds.allowEmpty}};
+                     {"allow_empty", r.thresholds.allowEmpty},
+                     {"attributes", r.thresholds.attributes}};
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;

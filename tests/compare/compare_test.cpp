@@ -141,9 +141,10 @@ TEST(Compare, NanAndInfNeverPassEvenWithHugeThresholds) {
   }
 }
 
-int incompatibility(const Framebuffer& test, const Framebuffer& ref, std::string* message) {
+int incompatibility(const Framebuffer& test, const Framebuffer& ref, std::string* message,
+                    const Thresholds& thresholds = Thresholds{}) {
   try {
-    compareImages(test, "test.exr", ref, "ref.exr", Thresholds{}, nullptr);
+    compareImages(test, "test.exr", ref, "ref.exr", thresholds, nullptr);
   } catch (const Error& e) {
     *message = e.what();
     return int(e.code());
@@ -168,6 +169,40 @@ TEST(Compare, IncompatibleImagesAreRefusedNamingFileAndChannel) {
   floatIds.addFloat(channels::kTriangleId);
   EXPECT_EQ(incompatibility(floatIds, image(), &message), int(ExitCode::kBadInput));
   EXPECT_NE(message.find("test.exr: channel tri.id"), std::string::npos) << message;
+}
+
+// --attributes: only the attribute families named are compared, each required in both; an
+// attribute one image lacks is refused with a hint, and a name neither carries is a usage error.
+TEST(Compare, AttributesOptionComparesOnlyTheFamiliesNamed) {
+  Framebuffer withNormal = image();
+  for (int k = 0; k < 3; ++k) withNormal.addFloat(channels::attributeChannel("normal", k), 0.5f);
+  std::string message;
+  EXPECT_EQ(incompatibility(image(), withNormal, &message), int(ExitCode::kBadInput));
+  EXPECT_NE(message.find("test.exr: channel attr.normal.x: missing (present in ref.exr; --attributes compares only those named)"),
+            std::string::npos)
+      << message;
+
+  Thresholds uvOnly;
+  uvOnly.attributes = {"uv"};
+  const CompareReport r = compareImages(image(), "test.exr", withNormal, "ref.exr", uvOnly, nullptr);
+  EXPECT_TRUE(r.pass);
+  ASSERT_EQ(r.families.size(), 3u);
+  EXPECT_EQ(r.families[2].name, "attr.uv");
+  EXPECT_EQ(reportToJson(r)["thresholds"]["attributes"], nlohmann::json::array({"uv"}));
+  EXPECT_EQ(reportToJson(compareImages(image(), "t", image(), "r", Thresholds{}, nullptr))["thresholds"]["attributes"],
+            nlohmann::json::array());
+
+  Thresholds normalOnly;
+  normalOnly.attributes = {"normal"};
+  EXPECT_EQ(incompatibility(image(), withNormal, &message, normalOnly), int(ExitCode::kBadInput));
+  EXPECT_NE(message.find("test.exr: channel attr.normal.x: missing (present in ref.exr)"), std::string::npos) << message;
+
+  Thresholds typo;
+  typo.attributes = {"nromal"};
+  EXPECT_EQ(incompatibility(image(), withNormal, &message, typo), int(ExitCode::kUsage));
+  EXPECT_NE(message.find("--attributes nromal: neither test.exr nor ref.exr carries it (they carry normal, uv)"),
+            std::string::npos)
+      << message;
 }
 
 TEST(Compare, HeatmapHasErrorAndClassChannels) {

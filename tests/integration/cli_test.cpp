@@ -985,6 +985,20 @@ TEST(Cli, AnotherRenderersImageIsJudgedAgainstTheReference) {
   const CliRun flipped = theirs("", true);
   EXPECT_EQ(flipped.exitCode, 1) << flipped.output;
   EXPECT_NE(flipped.output.find("different triangle at"), std::string::npos) << flipped.output;
+
+  // An image with fewer attributes than the reference: refused with the way out, which works.
+  const std::string uv = (dir / "uv.exr").string(), heat = (dir / "heat.exr").string();
+  ASSERT_EQ(run("render " + scene + " --attributes uv -o " + uv).exitCode, 0);
+  const CliRun refused = run("compare " + uv + " " + ref + " --heatmap " + heat);
+  EXPECT_EQ(refused.exitCode, 3) << refused.output;
+  EXPECT_NE(refused.output.find("channel attr.normal.x: missing (present in " + ref + "; --attributes compares only those named)"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_EQ(run("compare " + uv + " " + ref + " --attributes uv").exitCode, 0);
+  const CliRun typo = run("compare " + uv + " " + ref + " --attributes nromal --heatmap " + heat);
+  EXPECT_EQ(typo.exitCode, 2) << typo.output;
+  EXPECT_NE(typo.output.find("(they carry normal, uv)"), std::string::npos) << typo.output;
+  EXPECT_FALSE(fs::exists(heat));
 }
 
 TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
