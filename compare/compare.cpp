@@ -92,7 +92,7 @@ struct Family {
 
 std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& testPath,
                                     const Framebuffer& ref, const std::string& refPath,
-                                    const std::vector<std::string>& selection) {
+                                    const std::vector<std::string>& selection, std::vector<std::string>& leftOut) {
   std::vector<Family> families;
   Family bary{"bary", Family::kBary, {}, {}};
   for (const char* name : channels::kBary) {
@@ -125,6 +125,9 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
                          (carried.empty() ? std::string(" (they carry no attributes)") : " (they carry " + carried + ")"));
       }
       chosen.insert(*it);
+    }
+    for (const auto& entry : attributes) {
+      if (chosen.count(entry.first) == 0) leftOut.push_back(entry.first);
     }
     attributes = std::move(chosen);
   }
@@ -181,9 +184,8 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
   const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
-  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds.attributes);
-
   CompareReport report;
+  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds.attributes, report.leftOut);
   report.testPath = testPath;
   report.referencePath = refPath;
   report.width = test.width();

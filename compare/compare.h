@@ -83,6 +83,7 @@ struct CompareReport {
   double edgeBand = 0.0;  // pixels: the sum of the two paths' bands
   WorstPixel firstUnexplained;
   std::vector<FamilyReport> families;
+  std::vector<std::string> leftOut;  // attribute families an image carries that --attributes left out
   Thresholds thresholds;
   bool pass = false;
   std::vector<std::string> reasons;  // why it failed; empty when it passed

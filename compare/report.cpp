@@ -62,6 +62,7 @@ nlohmann::json reportToJson(const CompareReport& r) {
                      {"coverage", r.thresholds.coverage},
                      {"allow_empty", r.thresholds.allowEmpty},
                      {"attributes", r.thresholds.attributes}};
+  j["left_out"] = r.leftOut;
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {
     const FamilyStats& s = f.stats;
@@ -120,6 +121,11 @@ std::string reportToTable(const CompareReport& r) {
                   s.nanCount + s.infCount, limit.c_str(), f.bounded ? formatNumber(f.ratio.p999).c_str() : "-",
                   worst.c_str());
     out << line;
+  }
+  if (!r.leftOut.empty()) {
+    out << "left out (--attributes):";
+    for (const std::string& name : r.leftOut) out << " " << name;
+    out << "\n";
   }
   out << "verdict: " << (r.pass ? "PASS" : "FAIL") << "\n";
   for (const std::string& reason : r.reasons) out << "  - " << reason << "\n";

@@ -189,6 +189,8 @@ TEST(Compare, AttributesOptionComparesOnlyTheFamiliesNamed) {
   ASSERT_EQ(r.families.size(), 3u);
   EXPECT_EQ(r.families[2].name, "attr.uv");
   EXPECT_EQ(reportToJson(r)["thresholds"]["attributes"], nlohmann::json::array({"uv"}));
+  EXPECT_EQ(reportToJson(r)["left_out"], nlohmann::json::array({"attr.normal"}));
+  EXPECT_NE(reportToTable(r).find("left out (--attributes): attr.normal\n"), std::string::npos) << reportToTable(r);
   EXPECT_EQ(reportToJson(compareImages(image(), "t", image(), "r", Thresholds{}, nullptr))["thresholds"]["attributes"],
             nlohmann::json::array());
 
