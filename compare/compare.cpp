@@ -12,6 +12,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/plane_allocator.h"
 
 namespace rc {
 
@@ -158,7 +159,11 @@ bool countNonFinite(const std::vector<const float*>& planes, std::size_t pixel,
   return nan || inf;
 }
 
-double attributeRange(const Family& f, const std::vector<PixelClass>& classes) {
+// Per-pixel arrays, in huge pages where the kernel allows (core/plane_allocator.h).
+template <typename T>
+using PixelArray = std::vector<T, PlaneAllocator<T>>;
+
+double attributeRange(const Family& f, const PixelArray<PixelClass>& classes) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < classes.size(); ++i) {
     if (classes[i] == PixelClass::kBothEmpty || classes[i] == PixelClass::kTestOnly) continue;
@@ -192,7 +197,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.height = test.height();
   report.thresholds = thresholds;
   const std::size_t n = test.pixelCount();
-  std::vector<PixelClass> classes(n);
+  PixelArray<PixelClass> classes(n);  // every element is assigned below
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = testIds[i] != channels::kNoTriangle, r = refIds[i] != channels::kNoTriangle;
     classes[i] = !t && !r ? PixelClass::kBothEmpty
@@ -237,7 +242,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
   // A pixel where some family holds a NaN or Inf, per family (they run in parallel), for the
   // heatmap's colours only.
-  std::vector<std::vector<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
+  std::vector<PixelArray<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
   for (auto& flags : nonFiniteOf) flags.assign(n, 0);
   const std::size_t sameTriangle = report.classCounts[int(PixelClass::kSameTriangle)];
   const int width = test.width();
@@ -311,7 +316,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   });
 
   // Disagreements, explained where the diagnostics allow (docs/numerics.md).
-  std::vector<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
+  PixelArray<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
   if (report.explained) {
     const float* depthTest = test.find(channels::kDepth)->floats.data();
     const float* depthRef = ref.find(channels::kDepth)->floats.data();

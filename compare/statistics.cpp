@@ -41,7 +41,7 @@ float valueOfKey(std::uint32_t key) {
 
 }  // namespace
 
-std::vector<double> percentiles(const std::vector<float>& values, const std::vector<double>& p) {
+std::vector<double> percentiles(std::span<const float> values, const std::vector<double>& p) {
   std::vector<double> result(p.size(), 0.0);
   const std::size_t n = values.size();
   if (n == 0) return result;
@@ -96,7 +96,7 @@ std::vector<double> percentiles(const std::vector<float>& values, const std::vec
   return result;
 }
 
-double percentile(const std::vector<float>& values, double p) { return percentiles(values, {p})[0]; }
+double percentile(std::span<const float> values, double p) { return percentiles(values, {p})[0]; }
 
 FamilyStats StatsAccumulator::finish() {
   FamilyStats s;
