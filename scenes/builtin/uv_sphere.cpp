@@ -8,7 +8,13 @@ namespace rc::builtin {
 Mesh makeUvSphereMesh(int stacks, int slices,
                       const std::function<glm::vec3(double, double)>& position) {
   Mesh mesh;
+  // Reserved at their final sizes: grown by doubling, a million-triangle mesh's arrays were
+  // copied and faulted in about twice over (16,049 page faults loading blob:tris=1000000).
+  const std::size_t vertices = std::size_t(stacks + 1) * std::size_t(slices + 1);
+  mesh.positions.reserve(vertices);
+  mesh.triangles.reserve(2 * std::size_t(stacks - 1) * std::size_t(slices));
   std::vector<float> uvs;
+  uvs.reserve(2 * vertices);
   for (int i = 0; i <= stacks; ++i) {
     const double theta = M_PI * i / stacks;
     for (int j = 0; j <= slices; ++j) {
