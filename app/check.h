@@ -17,7 +17,10 @@ struct CheckResult {
   double rasterMs = 0.0, referenceMs = 0.0;
 };
 
+// With wantPictures, `raster` and `reference` carry their RGB previews (channels R, G, B) and
+// `heatmap` is made, for the pictures and EXR files; without, none of the three. rasterMs and
+// referenceMs time the renders alone (one cold frame each; the reference's with its BVH build).
 CheckResult checkScene(const Scene& scene, const RenderSettings& settings,
-                       const Thresholds& thresholds, bool wantHeatmap);
+                       const Thresholds& thresholds, bool wantPictures);
 
 }  // namespace rc::app

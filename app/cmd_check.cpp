@@ -78,7 +78,7 @@ int runCheck(CheckArgs& args) {
   const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}, {"--junit", args.junit, ".xml", true}};
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
-  const bool wantHeatmap = !args.out.empty() || !args.report.empty();
+  const bool wantPictures = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
 
@@ -107,7 +107,7 @@ int runCheck(CheckArgs& args) {
   for (const Scene& scene : scenes) {
     progress.step(scene.name + ": rasterizer, reference, compare");
     const long long started = nowNanoseconds();
-    const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantHeatmap);
+    const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
     const double seconds = millisecondsSince(started) * 1e-3;
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
@@ -120,7 +120,7 @@ int runCheck(CheckArgs& args) {
     if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
     std::fflush(stdout);
     const std::string stem = fileStem(scene.name, stems);
-    const ScenePictures pictures = wantHeatmap ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
+    const ScenePictures pictures = wantPictures ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
                                                                heatmapImage(r.heatmap)}
                                                : ScenePictures{};
     if (!args.out.empty()) {
