@@ -26,7 +26,9 @@ struct PlaneAllocator {
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kSmall) {
-      void* p = std::malloc(bytes ? bytes : 1);
+      // aligned_alloc wants a multiple of the alignment; malloc's covers max_align_t.
+      constexpr std::size_t align = alignof(T) > alignof(std::max_align_t) ? alignof(T) : 0;
+      void* p = align ? std::aligned_alloc(align, (bytes + align) / align * align) : std::malloc(bytes ? bytes : 1);
       if (!p) throw std::bad_alloc();
       return static_cast<T*>(p);
     }

@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
+#include "core/plane_allocator.h"
 #include "core/preview.h"
 #include "rasterizer/clip.h"
 #include "rasterizer/setup.h"
@@ -192,9 +193,45 @@ __attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, s
   facts.outcodes = outcodes;
 }
 
+// A block's coverage set-ups, in order. They go into the block's slice of one frame-wide
+// array (in huge pages: the slices of a million-triangle frame are 64 MB, a fault per 4 KB page
+// otherwise) and spill into a vector of the block's own in the rare block whose clipped
+// triangles make more set-ups than the slice holds. Either way they are contiguous.
+template <typename T>
+class SetupList {
+ public:
+  void reset(T* slice, std::size_t capacity) {
+    slice_ = data_ = slice;
+    capacity_ = capacity;
+    size_ = 0;
+  }
+  void push_back(const T& value) {
+    if (size_ == capacity_) spill();
+    data_[size_++] = value;
+  }
+  T& back() { return data_[size_ - 1]; }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  void spill() {
+    if (data_ == slice_) spill_.assign(slice_, slice_ + size_);
+    spill_.resize(std::max<std::size_t>(2 * size_, 64));
+    data_ = spill_.data();
+    capacity_ = spill_.size();
+  }
+  T* slice_ = nullptr;
+  T* data_ = nullptr;
+  std::size_t capacity_ = 0, size_ = 0;
+  std::vector<T> spill_;
+};
+
 template <typename Real>
 struct SetupBlock {
-  std::vector<CoverageSetup<Real>> coverage;
+  SetupList<CoverageSetup<Real>> coverage;
   std::vector<ClippedTriangle<Real>> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
   std::vector<std::uint32_t> tileBox;          // per set-up: tileBoxOf()
@@ -203,18 +240,23 @@ struct SetupBlock {
 
 template <typename Real>
 struct Frame {
-  std::vector<glm::dvec4> clip;      // per mesh vertex
-  std::vector<glm::dvec2> raster;    // per mesh vertex, when its outcode is 0
-  std::vector<std::uint8_t> outcode;  // per mesh vertex (clip.h)
+  // The frame-sized arrays come in huge pages where the kernel allows (PlaneAllocator): a first
+  // frame faults them in, and in 4 KB pages that cost more than rendering it
+  // (docs/rasterizer.md, "A first frame"). Every element is written before it is read.
+  std::vector<glm::dvec4, PlaneAllocator<glm::dvec4>> clip;         // per mesh vertex
+  std::vector<glm::dvec2, PlaneAllocator<glm::dvec2>> raster;       // per mesh vertex, when its outcode is 0
+  std::vector<std::uint8_t, PlaneAllocator<std::uint8_t>> outcode;  // per mesh vertex (clip.h)
   std::vector<VertexFacts> vertexFacts;  // per transform block
   VertexFacts vertices;                   // all of them
   bool allInside = false;         // every vertex inside the view volume: every triangle whole
   std::vector<SetupBlock<Real>> blocks;
+  // The blocks' coverage slices (SetupList), blockSize records each; unwritten until set up.
+  std::vector<CoverageSetup<Real>, PlaneAllocator<CoverageSetup<Real>>> coverageSlices;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
   std::vector<const ClippedTriangle<Real>*> blockClipped;
   std::vector<std::size_t> tileTotal;  // per tile: set-ups binned to it
   std::vector<std::size_t> binStart;  // per tile + 1
-  std::vector<std::uint32_t> binned;  // set-up names, tile by tile
+  std::vector<std::uint32_t, PlaneAllocator<std::uint32_t>> binned;  // set-up names, tile by tile
   std::vector<int> blockWorker;        // per block: the worker that set it up
   std::vector<std::size_t> tileShare;  // per worker and tile: set-ups it made binned there
   std::vector<std::vector<int>> blockQueues, tileQueues;  // per worker (parallelForQueues)
@@ -506,6 +548,8 @@ struct Pipeline {
     const int blocks = int((count + blockSize - 1) / blockSize);
     const std::size_t tiles = std::size_t(tileCount());
     frame.blocks.resize(std::size_t(blocks));
+    const std::size_t slice = options.setupSlice > 0 ? std::min(options.setupSlice, blockSize) : blockSize;
+    frame.coverageSlices.resize(std::size_t(blocks) * slice);
     frame.blockWorker.assign(std::size_t(blocks), 0);
     // Each worker sets up a contiguous run of blocks, so that the tiles can go to the worker
     // whose caches hold most of their set-ups (renderFrame).
@@ -513,7 +557,7 @@ struct Pipeline {
     parallelForQueues(contiguousQueues(blocks, workers), [&](int b, int worker) {
       frame.blockWorker[std::size_t(b)] = worker;
       SetupBlock<Real>& block = frame.blocks[b];
-      block.coverage.clear();
+      block.coverage.reset(frame.coverageSlices.data() + std::size_t(b) * slice, slice);
       block.clipped.clear();
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);

@@ -68,6 +68,11 @@ struct RasterOptions {
   // order without testing each one's outcodes (rasterizer.cpp). The same bits either way: off
   // only to test that.
   bool wholeMeshBatches = true;
+  // Records each block of triangles has in the frame's array of coverage set-ups before it
+  // spills into a vector of its own (rasterizer.cpp's SetupList); 0 = as many as the block has
+  // triangles, so that only clipped triangles that split into several set-ups can make a block
+  // spill. The same bits either way: set only to test the spill.
+  std::size_t setupSlice = 0;
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real

@@ -290,6 +290,34 @@ TEST(Rasterizer, WholeMeshBatchesGiveTheSameBitsAsTheOutcodeLoop) {
   }
 }
 
+// Each block writes its coverage set-ups into its slice of one frame-wide array and spills into
+// a vector of its own when the slice is full (rasterizer.cpp's SetupList), which with full-size
+// slices only clipped triangles splitting into several set-ups can cause. Slices of 1 record
+// (every block spills at once and grows its vector) and of 100 (the records already in the
+// slice move to the vector) must give the bits of full-size ones, frame after frame with one
+// Rasterizer (the second frame's spills reuse the vectors). The blob's 20,000 triangles fill
+// three blocks; nearplane and huge are clipped.
+TEST(Rasterizer, SetupsSpilledFromTheirSliceGiveTheSameBits) {
+  for (const char* spec : {"blob:tris=20000", "nearplane", "huge", "fans", "cube"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
+      RasterOptions o = options(precision);
+      Framebuffer whole;
+      Rasterizer(o).render(scene, whole);
+      for (std::size_t slice : {std::size_t(1), std::size_t(100)}) {
+        o.setupSlice = slice;
+        Rasterizer spilling(o);
+        for (int frame = 0; frame < 2; ++frame) {
+          Framebuffer fb;
+          spilling.render(scene, fb);
+          EXPECT_EQ(testing::differingChannels(whole, fb), std::vector<std::string>{})
+              << spec << " " << precisionName(precision) << ", slices of " << slice << ", frame " << frame;
+        }
+      }
+    }
+  }
+}
+
 // A Rasterizer reused across frames, scenes, sizes and attribute sets writes every pixel of
 // every channel: no stale value or channel survives from an earlier frame.
 TEST(Rasterizer, ReusedRasterizerAndFramebufferMatchAFreshOne) {
