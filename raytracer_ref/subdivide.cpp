@@ -103,6 +103,7 @@ EmbreeTriangles embreeTriangles(const Mesh& mesh, const Camera& camera, int thre
   };
   EmbreeTriangles out;
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
+  out.vertices.reserve(3 * vertexCount + 1);  // + Embree's padding (reference.cpp's buildGeometry)
   out.vertices.resize(3 * vertexCount);
   parallelFor(blocksOf(vertexCount), threads, [&](int b) {
     const std::size_t end = std::min(vertexCount, (std::size_t(b) + 1) * kBlock);
