@@ -68,9 +68,8 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--junit", args->junit,
                       "write the verdict as JUnit XML for CI test reports, one test case named by the test image ('-': standard output)");
   addThresholdOptions(command, args->thresholds);
-  command->add_option("--threads", args->threads, "threads decoding and encoding the EXR files and measuring the channel families, 0 = all cores")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
+  addThreadsOption(command, args->threads,
+                   "threads decoding and encoding the EXR files and measuring the channel families");
   command->add_option("--attributes", args->thresholds.attributes,
                       "compare only these attributes (e.g. uv,normal), leaving out any other either image carries; "
                       "default: every one, each required in both")

@@ -81,9 +81,7 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
       "--no-diagnostics", [&s](std::int64_t given) { s.raster.diagnostics = given <= 0; },  // =false counts -1
       "rasterizer: leave out bound.bary, bound.depth, edge.dist and depth.tie (compare then falls back to fixed "
       "thresholds)");
-  command->add_option("--threads", s.threads, "worker threads, 0 = all cores")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
+  addThreadsOption(command, s.threads, "worker threads");
   addChoice<std::string>(command, "--embree-isa", s.reference.isa,
                          {{"sse2", "sse2"}, {"sse4.2", "sse4.2"}, {"avx", "avx"}, {"avx2", "avx2"}, {"avx512", "avx512"}},
                          "Embree instruction set, pinned so results do not change with the CPU");
@@ -137,6 +135,10 @@ void addExrCompressionOption(CLI::App* command, ExrCompression& compression) {
                              {"none", ExrCompression::kNone}},
                             "lossless codec of the EXR files written: zip, piz (faster and smaller for full frames of "
                             "tiny triangles), zips, rle, or none (fastest, largest)");
+}
+
+void addThreadsOption(CLI::App* command, int& threads, const std::string& what) {
+  command->add_option("--threads", threads, what + ", 0 = all cores")->check(CLI::Range(0, 256))->capture_default_str();
 }
 
 void finishRenderSettings(RenderSettings& s) {

@@ -71,6 +71,8 @@ void addSceneOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
 // --exr-compression, for the commands that write EXR files.
 void addExrCompressionOption(CLI::App* command, ExrCompression& compression);
+// --threads N, 0..256 (0 = all cores); `what` says what the threads do.
+void addThreadsOption(CLI::App* command, int& threads, const std::string& what);
 
 // Propagates the thread count and checks the combination; throws usageError.
 void finishRenderSettings(RenderSettings& settings);
