@@ -46,6 +46,7 @@ std::vector<double> percentiles(std::span<const float> values, const std::vector
   const std::size_t n = values.size();
   if (n == 0) return result;
   if (n > 0xFFFFFFFFu) throw std::length_error("percentiles: more than 2^32 values");
+  if (p.size() > 255) throw std::length_error("percentiles: more than 255 at once");
   // The 0-based rank of each wanted value: nearest rank ceil(p n), at least 1.
   std::vector<std::size_t> ranks(p.size());
   for (std::size_t j = 0; j < p.size(); ++j) {
@@ -64,34 +65,35 @@ std::vector<double> percentiles(std::span<const float> values, const std::vector
   // Pass 1: how many keys share each top 16 bits; each rank falls in one such bin.
   std::vector<std::uint32_t> high(1u << 16, 0);
   for (const float v : values) ++high[orderedKey(v) >> 16];
-  struct Wanted {
-    std::uint32_t bin;
-    std::vector<std::uint32_t> low;  // pass 2: how many keys of the bin share each low 16 bits
-  };
-  std::vector<Wanted> wanted;
-  std::vector<std::size_t> wantedOf(p.size());
+  // The top-16-bit bins holding a wanted rank (at most one per rank), and each rank's slot.
+  std::vector<std::uint32_t> bins;
+  std::vector<std::size_t> slotOfRank(p.size());
   for (std::size_t j = 0; j < p.size(); ++j) {
     std::size_t below = 0;
     std::uint32_t bin = 0;
     while (below + high[bin] <= ranks[j]) below += high[bin++];
-    std::size_t w = 0;
-    while (w < wanted.size() && wanted[w].bin != bin) ++w;
-    if (w == wanted.size()) wanted.push_back({bin, std::vector<std::uint32_t>(1u << 16, 0)});
-    wantedOf[j] = w;
+    const auto found = std::find(bins.begin(), bins.end(), bin);
+    slotOfRank[j] = std::size_t(found - bins.begin()) + 1;
+    if (found == bins.end()) bins.push_back(bin);
     ranks[j] -= below;  // now the rank within its bin
   }
+  // Pass 2: how many keys of each wanted bin share each low 16 bits. Every key is counted
+  // without a branch: its bin's slot (0 for a bin nobody wants, whose counts are dropped)
+  // picks the histogram. Looping over the wanted bins per key instead, a mispredicted branch
+  // each, took four fifths of the time.
+  std::vector<std::uint8_t> slotOfBin(std::size_t(1) << 16, 0);
+  for (std::size_t w = 0; w < bins.size(); ++w) slotOfBin[bins[w]] = std::uint8_t(w + 1);
+  std::vector<std::uint32_t> low((bins.size() + 1) << 16, 0);
   for (const float v : values) {
     const std::uint32_t key = orderedKey(v);
-    for (Wanted& w : wanted) {
-      if (key >> 16 == w.bin) ++w.low[key & 0xFFFFu];
-    }
+    ++low[std::size_t(slotOfBin[key >> 16]) << 16 | (key & 0xFFFFu)];
   }
   for (std::size_t j = 0; j < p.size(); ++j) {
-    const Wanted& w = wanted[wantedOf[j]];
+    const std::uint32_t* counts = low.data() + (slotOfRank[j] << 16);
     std::size_t below = 0;
-    std::uint32_t low = 0;
-    while (below + w.low[low] <= ranks[j]) below += w.low[low++];
-    result[j] = valueOfKey(w.bin << 16 | low);
+    std::uint32_t lowBits = 0;
+    while (below + counts[lowBits] <= ranks[j]) below += counts[lowBits++];
+    result[j] = valueOfKey(bins[slotOfRank[j] - 1] << 16 | lowBits);
   }
   return result;
 }
