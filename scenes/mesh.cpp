@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "core/error.h"
@@ -144,22 +145,40 @@ void validateMesh(const Mesh& mesh, const std::string& where) {
 }
 
 std::string closedSolidProblem(const Mesh& mesh) {
-  std::map<std::array<float, 3>, unsigned> weld;  // +0.0f added: -0 and +0 weld
-  std::vector<unsigned> id(mesh.positions.size());
+  // Weld: vertices at one position (+0.0f added: -0 and +0 weld) are one, named by the first
+  // of them. By sorting, not a std::map: the map took about a second at 1M triangles.
+  const std::size_t n = mesh.positions.size();
+  std::vector<std::array<std::uint32_t, 3>> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3 p = mesh.positions[i] + 0.0f;
+    std::memcpy(key[i].data(), &p, sizeof p);  // equal bits <=> equal coordinates: all finite
+  }
+  std::vector<std::uint32_t> order(n), id(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+  const auto same = [&](std::uint32_t a, std::uint32_t b) {
+    return key[a][0] == key[b][0] && key[a][1] == key[b][1] && key[a][2] == key[b][2];
+  };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    for (int k = 0; k < 3; ++k) {
+      if (key[a][k] != key[b][k]) return key[a][k] < key[b][k];
+    }
+    return a < b;
+  });
+  for (std::size_t k = 0; k < n; ++k) {
+    id[order[k]] = k > 0 && same(order[k], order[k - 1]) ? id[order[k - 1]] : order[k];
+  }
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3 p = mesh.positions[i];
-    id[i] = weld.emplace(std::array<float, 3>{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}, unsigned(weld.size())).first->second;
+  for (const glm::vec3& p : mesh.positions) {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
   const glm::dvec3 c = 0.5 * (lo + hi);
-  std::vector<std::pair<unsigned, unsigned>> edges;
+  // Each welded vertex's outgoing edges, as a compressed list (first counted, then filled).
+  std::vector<std::size_t> first(n + 1, 0);
   double solidAngle = 0.0;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const glm::uvec3 tri = mesh.triangles[t];
-    const unsigned v[3] = {id[tri.x], id[tri.y], id[tri.z]};
-    for (int k = 0; k < 3; ++k) edges.emplace_back(v[k], v[(k + 1) % 3]);
+    for (int k = 0; k < 3; ++k) ++first[id[tri[k]] + 1];
     const glm::dvec3 a = glm::dvec3(mesh.positions[tri.x]) - c, b = glm::dvec3(mesh.positions[tri.y]) - c,
                      d = glm::dvec3(mesh.positions[tri.z]) - c;
     const double det = glm::dot(a, glm::cross(b, d));
@@ -168,14 +187,26 @@ std::string closedSolidProblem(const Mesh& mesh) {
     const double la = glm::length(a), lb = glm::length(b), ld = glm::length(d);
     solidAngle += 2.0 * std::atan2(det, la * lb * ld + glm::dot(a, b) * ld + glm::dot(a, d) * lb + glm::dot(b, d) * la);
   }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const auto [a, b] = edges[i];
-    if (i + 1 < edges.size() && edges[i + 1] == edges[i]) {
-      return "edge " + std::to_string(a) + "-" + std::to_string(b) + " is used twice in one direction";
-    }
-    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) {
-      return "edge " + std::to_string(a) + "-" + std::to_string(b) + " has no opposite: the surface is open";
+  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+  std::vector<std::uint32_t> to(first[n]);
+  std::vector<std::size_t> cursor(first.begin(), first.end() - 1);
+  for (const glm::uvec3& tri : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) to[cursor[id[tri[k]]]++] = id[tri[(k + 1) % 3]];
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    std::sort(to.begin() + std::ptrdiff_t(first[v]), to.begin() + std::ptrdiff_t(first[v + 1]));
+  }
+  // In order of (a, b): each edge once, and its reverse once.
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t j = first[a]; j < first[a + 1]; ++j) {
+      const std::uint32_t b = to[j];
+      if (j + 1 < first[a + 1] && to[j + 1] == b) {
+        return "edge " + std::to_string(a) + "-" + std::to_string(b) + " is used twice in one direction";
+      }
+      if (!std::binary_search(to.begin() + std::ptrdiff_t(first[b]), to.begin() + std::ptrdiff_t(first[b + 1]),
+                              std::uint32_t(a))) {
+        return "edge " + std::to_string(a) + "-" + std::to_string(b) + " has no opposite: the surface is open";
+      }
     }
   }
   if (std::fabs(solidAngle - 4.0 * M_PI) > 1e-6) {

@@ -35,7 +35,8 @@ struct Mesh {
 };
 
 // Empty when `mesh` bounds a solid that is star-shaped about the centre c of its bounding box,
-// else the first problem found. Sufficient for Mesh::closedSolid:
+// else the first problem found (a vertex named by the first mesh vertex at its position).
+// Sufficient for Mesh::closedSolid:
 //  1. closed and consistently wound: with vertices welded by position, every directed edge
 //     (a, b) occurs once and its reverse (b, a) once;
 //  2. every triangle faces away from c: det[p0 - c, p1 - c, p2 - c] > 0, so seen from c each
