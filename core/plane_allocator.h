@@ -26,9 +26,13 @@ struct PlaneAllocator {
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kSmall) {
-      // aligned_alloc wants a multiple of the alignment; malloc's covers max_align_t.
-      constexpr std::size_t align = alignof(T) > alignof(std::max_align_t) ? alignof(T) : 0;
-      void* p = align ? std::aligned_alloc(align, (bytes + align) / align * align) : std::malloc(bytes ? bytes : 1);
+      void* p = nullptr;
+      if constexpr (alignof(T) > alignof(std::max_align_t)) {
+        // aligned_alloc wants a non-zero multiple of the alignment.
+        p = std::aligned_alloc(alignof(T), (bytes / alignof(T) + 1) * alignof(T));
+      } else {
+        p = std::malloc(bytes ? bytes : 1);  // aligned for max_align_t
+      }
       if (!p) throw std::bad_alloc();
       return static_cast<T*>(p);
     }
