@@ -159,11 +159,7 @@ bool countNonFinite(const std::vector<const float*>& planes, std::size_t pixel,
   return nan || inf;
 }
 
-// Per-pixel arrays, in huge pages where the kernel allows (core/plane_allocator.h).
-template <typename T>
-using PixelArray = std::vector<T, PlaneAllocator<T>>;
-
-double attributeRange(const Family& f, const PixelArray<PixelClass>& classes) {
+double attributeRange(const Family& f, const PlaneVector<PixelClass>& classes) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < classes.size(); ++i) {
     if (classes[i] == PixelClass::kBothEmpty || classes[i] == PixelClass::kTestOnly) continue;
@@ -197,7 +193,8 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.height = test.height();
   report.thresholds = thresholds;
   const std::size_t n = test.pixelCount();
-  PixelArray<PixelClass> classes(n);  // every element is assigned below
+  // Per-pixel arrays in huge pages where the kernel allows (core/plane_allocator.h).
+  PlaneVector<PixelClass> classes(n);  // every element is assigned below
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = testIds[i] != channels::kNoTriangle, r = refIds[i] != channels::kNoTriangle;
     classes[i] = !t && !r ? PixelClass::kBothEmpty
@@ -242,7 +239,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
   // A pixel where some family holds a NaN or Inf, per family (they run in parallel), for the
   // heatmap's colours only.
-  std::vector<PixelArray<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
+  std::vector<PlaneVector<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
   for (auto& flags : nonFiniteOf) flags.assign(n, 0);
   const std::size_t sameTriangle = report.classCounts[int(PixelClass::kSameTriangle)];
   const int width = test.width();
@@ -316,7 +313,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   });
 
   // Disagreements, explained where the diagnostics allow (docs/numerics.md).
-  PixelArray<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
+  PlaneVector<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
   if (report.explained) {
     const float* depthTest = test.find(channels::kDepth)->floats.data();
     const float* depthRef = ref.find(channels::kDepth)->floats.data();

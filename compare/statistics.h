@@ -37,7 +37,7 @@ class StatsAccumulator {
  private:
   // A million errors at 1920x1080, per statistic: in huge pages where the kernel allows, since
   // faulting them in 4 KB pages took most of compare's page faults (65% of `check`'s).
-  std::vector<float, PlaneAllocator<float>> errors_;
+  PlaneVector<float> errors_;
   double sum_ = 0.0, sumSquares_ = 0.0;
   std::size_t nan_ = 0, inf_ = 0;
   WorstPixel worst_;

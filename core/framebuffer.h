@@ -20,8 +20,8 @@ const char* channelTypeName(ChannelType type);
 struct Channel {
   std::string name;                // OpenEXR layer.channel name, e.g. "bary.b0"
   ChannelType type;                // which of the two planes below is in use
-  std::vector<float, PlaneAllocator<float>> floats;  // width*height values when kFloat
-  std::vector<std::uint32_t, PlaneAllocator<std::uint32_t>> uints;  // ... when kUint
+  PlaneVector<float> floats;  // width*height values when kFloat
+  PlaneVector<std::uint32_t> uints;  // ... when kUint
 };
 
 class Framebuffer {

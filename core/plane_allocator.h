@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
 namespace rc {
 
@@ -54,5 +55,9 @@ struct PlaneAllocator {
   template <typename U>
   bool operator==(const PlaneAllocator<U>&) const { return true; }
 };
+
+// A vector in such memory: image planes and the other per-pixel or per-vertex arrays.
+template <typename T>
+using PlaneVector = std::vector<T, PlaneAllocator<T>>;
 
 }  // namespace rc

@@ -243,20 +243,20 @@ struct Frame {
   // The frame-sized arrays come in huge pages where the kernel allows (PlaneAllocator): a first
   // frame faults them in, and in 4 KB pages that cost more than rendering it
   // (docs/rasterizer.md, "A first frame"). Every element is written before it is read.
-  std::vector<glm::dvec4, PlaneAllocator<glm::dvec4>> clip;         // per mesh vertex
-  std::vector<glm::dvec2, PlaneAllocator<glm::dvec2>> raster;       // per mesh vertex, when its outcode is 0
-  std::vector<std::uint8_t, PlaneAllocator<std::uint8_t>> outcode;  // per mesh vertex (clip.h)
+  PlaneVector<glm::dvec4> clip;       // per mesh vertex
+  PlaneVector<glm::dvec2> raster;     // per mesh vertex, when its outcode is 0
+  PlaneVector<std::uint8_t> outcode;  // per mesh vertex (clip.h)
   std::vector<VertexFacts> vertexFacts;  // per transform block
   VertexFacts vertices;                   // all of them
   bool allInside = false;         // every vertex inside the view volume: every triangle whole
   std::vector<SetupBlock<Real>> blocks;
   // The blocks' coverage slices (SetupList), blockSize records each; unwritten until set up.
-  std::vector<CoverageSetup<Real>, PlaneAllocator<CoverageSetup<Real>>> coverageSlices;
+  PlaneVector<CoverageSetup<Real>> coverageSlices;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
   std::vector<const ClippedTriangle<Real>*> blockClipped;
   std::vector<std::size_t> tileTotal;  // per tile: set-ups binned to it
   std::vector<std::size_t> binStart;  // per tile + 1
-  std::vector<std::uint32_t, PlaneAllocator<std::uint32_t>> binned;  // set-up names, tile by tile
+  PlaneVector<std::uint32_t> binned;  // set-up names, tile by tile
   std::vector<int> blockWorker;        // per block: the worker that set it up
   std::vector<std::size_t> tileShare;  // per worker and tile: set-ups it made binned there
   std::vector<std::vector<int>> blockQueues, tileQueues;  // per worker (parallelForQueues)
