@@ -149,9 +149,12 @@ std::string closedSolidProblem(const Mesh& mesh) {
   // of them. By sorting, not a std::map: the map took about a second at 1M triangles.
   const std::size_t n = mesh.positions.size();
   std::vector<std::array<std::uint32_t, 3>> key(n);
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (std::size_t i = 0; i < n; ++i) {
     const glm::vec3 p = mesh.positions[i] + 0.0f;
     std::memcpy(key[i].data(), &p, sizeof p);  // equal bits <=> equal coordinates: all finite
+    lo = glm::min(lo, glm::dvec3(mesh.positions[i]));
+    hi = glm::max(hi, glm::dvec3(mesh.positions[i]));
   }
   std::vector<std::uint32_t> order(n), id(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
@@ -166,11 +169,6 @@ std::string closedSolidProblem(const Mesh& mesh) {
   });
   for (std::size_t k = 0; k < n; ++k) {
     id[order[k]] = k > 0 && same(order[k], order[k - 1]) ? id[order[k - 1]] : order[k];
-  }
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, glm::dvec3(p));
-    hi = glm::max(hi, glm::dvec3(p));
   }
   const glm::dvec3 c = 0.5 * (lo + hi);
   // Each welded vertex's outgoing edges, as a compressed list (first counted, then filled).
