@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -51,13 +52,21 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path) {
   return bytes.substr(20, std::size_t(chunkLength));
 }
 
-nlohmann::json checkUris(const std::string& json, const std::string& path) {
-  nlohmann::json doc;
+nlohmann::json parseJson(const std::string& original, const EmbeddedData& embedded, const std::string& path) {
   try {
-    doc = nlohmann::json::parse(json);
+    return nlohmann::json::parse(embedded.changed() ? embedded.json : original);
+  } catch (const nlohmann::json::exception& e) {
+    if (!embedded.changed()) throw badInput(path, std::string("invalid JSON: ") + e.what());
+  }
+  try {  // the error's place in the file's own text
+    return nlohmann::json::parse(original);
   } catch (const nlohmann::json::exception& e) {
     throw badInput(path, std::string("invalid JSON: ") + e.what());
   }
+}
+
+void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const std::string& path) {
+  if (!doc.is_object()) return;  // tinygltf reports it
   for (const char* array : {"buffers", "images"}) {
     if (!doc.contains(array) || !doc[array].is_array()) continue;
     for (std::size_t i = 0; i < doc[array].size(); ++i) {
@@ -66,6 +75,17 @@ nlohmann::json checkUris(const std::string& json, const std::string& path) {
       const std::string where = path + ": /" + array + "/" + std::to_string(i) + "/uri";
       if (!item["uri"].is_string()) throw badInput(where, "is not a string");
       const std::string uri = item["uri"].get<std::string>();
+      if (const auto taken = embedded.buffers.find(uri); taken != embedded.buffers.end() && std::string_view(array) == "buffers") {
+        const std::size_t size = taken->second.size();
+        if (size == 0) throw badInput(where, "is a data: URI that holds no bytes");
+        const nlohmann::json* length = item.contains("byteLength") ? &item["byteLength"] : nullptr;
+        if (length && length->is_number_unsigned() && length->get<std::uint64_t>() != size) {
+          throw badInput(path + ": /buffers/" + std::to_string(i) + "/byteLength",
+                         "is " + std::to_string(length->get<std::uint64_t>()) + ", but the buffer's data: URI holds " +
+                             std::to_string(size) + " bytes");
+        }
+        continue;  // otherwise tinygltf reports a byteLength that is missing or not a count
+      }
       if (uri.rfind("data:", 0) == 0) continue;
       if (uri.empty() || uri[0] == '/' || uri.find('\\') != std::string::npos ||
           uri.find(':') != std::string::npos) {
@@ -79,7 +99,6 @@ nlohmann::json checkUris(const std::string& json, const std::string& path) {
       }
     }
   }
-  return doc;
 }
 
 namespace {
@@ -323,16 +342,48 @@ std::vector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount
   return out;
 }
 
-void confineLoader(tinygltf::TinyGLTF& loader, const std::string* folder) {
+std::string clippedLines(const std::string& text, std::size_t width) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (!out.empty()) out += '\n';
+    if (end - start <= width) {
+      out.append(text, start, end - start);
+    } else {
+      out.append(text, start, width);
+      out += "... (" + std::to_string(end - start - width) + " more characters)";
+    }
+    start = end + 1;
+  }
+  return out;
+}
+
+void confineLoader(tinygltf::TinyGLTF& loader, LoaderFiles* files) {
   tinygltf::FsCallbacks callbacks;
-  callbacks.user_data = const_cast<std::string*>(folder);
+  callbacks.user_data = files;
+  // tinygltf asks for a buffer's URI joined to the folder; a name of takeDataUris is answered
+  // with its bytes, from memory.
+  static constexpr auto embeddedOf = [](const std::string& file, LoaderFiles& f) {
+    const std::size_t n = f.folder.size();
+    const bool inFolder = file.size() > n + 1 && file.compare(0, n, f.folder) == 0 && file[n] == '/';
+    return inFolder ? f.embedded.find(file.substr(n + 1)) : f.embedded.end();
+  };
   callbacks.FileExists = [](const std::string& file, void* user) {
+    LoaderFiles& f = *static_cast<LoaderFiles*>(user);
+    if (embeddedOf(file, f) != f.embedded.end()) return true;
     std::error_code ec;
-    return insideFolder(file, *static_cast<std::string*>(user)) && fs::is_regular_file(file, ec);
+    return insideFolder(file, f.folder) && fs::is_regular_file(file, ec);
   };
   callbacks.ExpandFilePath = [](const std::string& file, void*) { return file; };  // never expand
   callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
-    if (!insideFolder(file, *static_cast<std::string*>(user))) {
+    LoaderFiles& f = *static_cast<LoaderFiles*>(user);
+    if (const auto e = embeddedOf(file, f); e != f.embedded.end()) {
+      *out = std::move(e->second);  // each buffer is read once
+      return true;
+    }
+    if (!insideFolder(file, f.folder)) {
       if (err) *err += "refused to read '" + file + "': outside the glTF file's folder\n";
       return false;
     }

@@ -7,8 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
+
+#include "scenes/loaders/gltf_data_uris.h"
 
 namespace rc::gltf {
 
@@ -16,11 +19,15 @@ namespace rc::gltf {
 // chunk's bounds; returns the JSON chunk. Throws badInput naming the byte offset.
 std::string glbJsonChunk(const std::string& bytes, const std::string& path);
 
+// Parses the JSON: takeDataUris's when it changed it, the file's own otherwise. A syntax error
+// is reported at its place in the file's own text: badInput(path, "invalid JSON: ...").
+nlohmann::json parseJson(const std::string& original, const EmbeddedData& embedded, const std::string& path);
+
 // Refuses (badInput naming the JSON path) any buffer or image URI that is not a data: URI or a
 // plain relative path inside the file's folder: absolute paths, "..", schemes such as file://
-// or http://, backslashes, and shell or expansion characters.
-// Returns the parsed document, for the checks that follow (planMeshopt).
-nlohmann::json checkUris(const std::string& json, const std::string& path);
+// or http://, backslashes, and shell or expansion characters. A buffer whose data: URI
+// takeDataUris took must hold at least one byte, and as many as its byteLength says.
+void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
@@ -66,7 +73,17 @@ class AccessorReader {
   bool quantized_ = false;
 };
 
-// Installs file callbacks that read only files inside `folder` and a no-op image decoder.
-void confineLoader(tinygltf::TinyGLTF& loader, const std::string* folder);
+// tinygltf's error text, without its last newline, each line cut to `width` characters: it
+// quotes a data: URI it cannot decode whole, which can be megabytes.
+std::string clippedLines(const std::string& text, std::size_t width = 300);
+
+struct LoaderFiles {
+  std::string folder;  // the glTF file's folder, canonical
+  std::map<std::string, std::vector<unsigned char>> embedded;  // EmbeddedData::buffers
+};
+
+// Installs file callbacks that read only files inside `files->folder`, and the bytes of
+// `files->embedded` for their names (moved out: each is read once), and a no-op image decoder.
+void confineLoader(tinygltf::TinyGLTF& loader, LoaderFiles* files);
 
 }  // namespace rc::gltf

@@ -455,23 +455,26 @@ GltfContent loadGltf(const std::string& path) {
   const std::string bytes = readInputFile(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const std::string json = binary ? gltf::glbJsonChunk(bytes, path) : bytes;
-  const gltf::MeshoptPlan meshopt = gltf::planMeshopt(gltf::checkUris(json, path), path);
-  const std::string input = !meshopt.changed ? std::string() : binary ? gltf::replaceGlbJson(bytes, meshopt.json) : meshopt.json;
-  const std::string& text = meshopt.changed ? input : bytes;
+  gltf::EmbeddedData embedded = gltf::takeDataUris(json, path);
+  nlohmann::json doc = gltf::parseJson(json, embedded, path);
+  gltf::checkUris(doc, embedded, path);
+  const gltf::MeshoptPlan meshopt = gltf::planMeshopt(std::move(doc), path);
+  // The JSON tinygltf reads: the meshopt plan's, else the one without data URIs, else the file's.
+  const std::string& newJson = meshopt.changed ? meshopt.json : embedded.json;
+  const std::string input = newJson.empty() ? std::string() : binary ? gltf::replaceGlbJson(bytes, newJson) : newJson;
+  const std::string& text = newJson.empty() ? bytes : input;
 
   std::error_code ec;
-  const std::string folder = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).parent_path().string();
+  gltf::LoaderFiles files{std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).parent_path().string(),
+                          std::move(embedded.buffers)};
   tinygltf::TinyGLTF loader;
-  gltf::confineLoader(loader, &folder);
+  gltf::confineLoader(loader, &files);
   tinygltf::Model model;
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(text.data()),
-                                                       unsigned(text.size()), folder)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), folder);
-  if (!ok) {
-    while (!err.empty() && err.back() == '\n') err.pop_back();
-    throw badInput(path, "not a valid glTF 2.0 file: " + err);
-  }
+                                                       unsigned(text.size()), files.folder)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), files.folder);
+  if (!ok) throw badInput(path, "not a valid glTF 2.0 file: " + gltf::clippedLines(err));
   if (model.asset.version.rfind("2.", 0) != 0) throw badInput(path + ": /asset/version", "'" + model.asset.version + "' is not 2.x");
   std::string unread;
   for (const std::string& e : model.extensionsRequired) {
