@@ -1,4 +1,4 @@
-// Allocator for image planes. A 1080p float plane is 8 MB; faulting it in 4 KB pages cost more
+// Allocators for image planes and meshes. A 1080p float plane is 8 MB; faulting it in 4 KB pages cost more
 // than rasterizing it (measured: 60% of a 100k-triangle frame). Large planes are aligned to
 // 2 MB and advised to use transparent huge pages, which cuts page faults by 512x where the
 // kernel allows it (THP "madvise" or "always") and changes nothing where it does not. Planes
@@ -14,15 +14,17 @@
 
 namespace rc {
 
+// Large blocks aligned to 2 MB and advised to use transparent huge pages; elements are
+// value-initialised as std::allocator's are (so resize() zeroes floats).
 template <typename T>
-struct PlaneAllocator {
+struct HugePageAllocator {
   using value_type = T;
   static constexpr std::size_t kHugePage = std::size_t(2) << 20;
   static constexpr std::size_t kSmall = std::size_t(256) << 10;
 
-  PlaneAllocator() = default;
+  HugePageAllocator() = default;
   template <typename U>
-  PlaneAllocator(const PlaneAllocator<U>&) {}
+  HugePageAllocator(const HugePageAllocator<U>&) {}
 
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
@@ -45,8 +47,19 @@ struct PlaneAllocator {
   }
   void deallocate(T* p, std::size_t) { std::free(p); }
 
-  // resize() leaves new elements default-initialised (for floats: unwritten), so a renderer
-  // that writes every pixel does not pay for a fill first; assign(n, value) still fills.
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+};
+
+// The same memory for image planes, whose resize() leaves new elements default-initialised
+// (for floats: unwritten), so a renderer that writes every pixel does not pay for a fill
+// first; assign(n, value) still fills.
+template <typename T>
+struct PlaneAllocator : HugePageAllocator<T> {
+  PlaneAllocator() = default;
+  template <typename U>
+  PlaneAllocator(const PlaneAllocator<U>&) {}
+
   template <typename U>
   void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
   template <typename U, typename... Args>
@@ -59,5 +72,10 @@ struct PlaneAllocator {
 // A vector in such memory: image planes and the other per-pixel or per-vertex arrays.
 template <typename T>
 using PlaneVector = std::vector<T, PlaneAllocator<T>>;
+
+// A vector in such memory whose new elements are value-initialised, as std::vector's are: a
+// mesh's arrays (scenes/mesh.h), which loaders grow and resize.
+template <typename T>
+using HugeVector = std::vector<T, HugePageAllocator<T>>;
 
 }  // namespace rc

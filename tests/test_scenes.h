@@ -22,7 +22,7 @@ inline Scene makeTriangleScene(const std::vector<glm::vec3>& corners, int width 
                                int height = 48, glm::dvec3 eye = {0.0, 0.0, 3.0},
                                double zNear = 0.1, const char* name = "test") {
   Mesh mesh;
-  mesh.positions = corners;
+  mesh.positions.assign(corners.begin(), corners.end());
   for (unsigned i = 0; i + 2 < corners.size(); i += 3) mesh.triangles.push_back({i, i + 1, i + 2});
   Attribute& uv = mesh.addAttribute("uv", 2);
   for (std::size_t i = 0; i < corners.size(); ++i) {

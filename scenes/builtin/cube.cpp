@@ -11,7 +11,7 @@ Scene makeCube(SceneArgs&) {
   // Each face: a normal axis, and the two in-plane axes that carry u and v.
   const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const glm::mat4 rotation = glm::rotate(glm::mat4(1.f), 0.5f, glm::normalize(glm::vec3(1, 1, 0)));
-  std::vector<float> uvs;
+  HugeVector<float> uvs;
   for (const glm::vec3& n : normals) {
     const glm::vec3 a = (n.x != 0.f) ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
     const glm::vec3 b = glm::cross(n, a);

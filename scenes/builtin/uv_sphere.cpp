@@ -13,7 +13,7 @@ Mesh makeUvSphereMesh(int stacks, int slices,
   const std::size_t vertices = std::size_t(stacks + 1) * std::size_t(slices + 1);
   mesh.positions.reserve(vertices);
   mesh.triangles.reserve(2 * std::size_t(stacks - 1) * std::size_t(slices));
-  std::vector<float> uvs;
+  HugeVector<float> uvs;
   uvs.reserve(2 * vertices);
   for (int i = 0; i <= stacks; ++i) {
     const double theta = M_PI * i / stacks;

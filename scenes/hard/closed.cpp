@@ -51,7 +51,7 @@ Mesh jitteredSphere(std::uint64_t seed, int subdivisions, double jitter) {
     const double radius = 1.0 + jitter * uniform(rng);
     mesh.positions.emplace_back(glm::vec3(rotation * glm::dvec4(glm::normalize(p) * radius, 1.0)));
   }
-  mesh.triangles = std::move(f);
+  mesh.triangles.assign(f.begin(), f.end());
   return mesh;
 }
 

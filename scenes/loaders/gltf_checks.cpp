@@ -274,7 +274,7 @@ std::vector<unsigned char> AccessorReader::elements(int index, int components, c
   return bytes;
 }
 
-std::vector<float> AccessorReader::floats(int index, Use use, int components, bool displacement) const {
+HugeVector<float> AccessorReader::floats(int index, Use use, int components, bool displacement) const {
   const tinygltf::Accessor& a = accessor(index, useName(use));
   const int type = a.componentType;
   if (!allowedType(use, displacement, type, a.normalized, quantized_)) {
@@ -287,7 +287,7 @@ std::vector<float> AccessorReader::floats(int index, Use use, int components, bo
   }
   const std::vector<unsigned char> bytes = elements(index, components, useName(use));
   const bool normalized = a.normalized && type != TINYGLTF_COMPONENT_TYPE_FLOAT;
-  std::vector<float> values(std::size_t(a.count) * std::size_t(components));
+  HugeVector<float> values(std::size_t(a.count) * std::size_t(components));
   const unsigned char* p = bytes.data();
   for (float& v : values) {
     switch (type) {

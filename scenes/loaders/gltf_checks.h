@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/plane_allocator.h"
 #include "scenes/loaders/gltf_data_uris.h"
 
 namespace rc::gltf {
@@ -49,7 +50,7 @@ class AccessorReader {
   AccessorReader(const tinygltf::Model& model, const std::string& path);
 
   // `components` per element, converted to float; `displacement` for a morph target's values.
-  std::vector<float> floats(int index, Use use, int components, bool displacement = false) const;
+  HugeVector<float> floats(int index, Use use, int components, bool displacement = false) const;
   // Vertex indices, each checked against `vertexCount`.
   std::vector<unsigned> indices(int index, std::size_t vertexCount) const;
   bool quantized() const { return quantized_; }

@@ -77,13 +77,13 @@ struct Walker {
   // values a vertex, added to the first of the vertex's `stride` (TANGENT's displacements leave
   // its w alone).
   void morph(const tinygltf::Primitive& primitive, const std::vector<double>& weights, const char* name, gltf::Use use,
-             int components, std::vector<float>& values, const std::string& where, int stride = 0) const {
+             int components, HugeVector<float>& values, const std::string& where, int stride = 0) const {
     if (stride == 0) stride = components;
     std::vector<double> sum;
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
       auto it = primitive.targets[t].find(name);
       if (it == primitive.targets[t].end()) continue;
-      const std::vector<float> d = reader.floats(it->second, use, components, true);
+      const HugeVector<float> d = reader.floats(it->second, use, components, true);
       if (d.size() / std::size_t(components) != values.size() / std::size_t(stride)) {
         throw badInput(where + ".targets[" + std::to_string(t) + "]", std::string(name) + " count differs from the primitive's");
       }
@@ -105,7 +105,7 @@ struct Walker {
                                 std::to_string(weights.size()) + " weights are given");
     }
     Mesh part;
-    std::vector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3);
+    HugeVector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3);
     morph(primitive, weights, "POSITION", gltf::Use::kPosition, 3, p, where);
     for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
     struct Known {
@@ -128,7 +128,7 @@ struct Walker {
                         ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(it->second)].type))
                         : spec.components[0];
       const int components = (n == spec.components[1]) ? n : spec.components[0];
-      std::vector<float> values = reader.floats(it->second, spec.use, components);
+      HugeVector<float> values = reader.floats(it->second, spec.use, components);
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, spec.gltf + " count differs from POSITION count");
       }
@@ -149,7 +149,7 @@ struct Walker {
                                  ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(index)].type))
                                  : 1;
       if (components < 1 || components > 4) continue;
-      std::vector<float> values = reader.floats(index, gltf::Use::kCustom, components);
+      HugeVector<float> values = reader.floats(index, gltf::Use::kCustom, components);
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, semantic + " count differs from POSITION count");
       }
@@ -210,7 +210,7 @@ struct Walker {
     const tinygltf::Skin& skin = model.skins[std::size_t(skinIndex)];
     const std::string at = path + ": skins[" + std::to_string(skinIndex) + "]";
     if (skin.joints.empty()) throw badInput(at, "has no joints");
-    std::vector<float> inverseBind;
+    HugeVector<float> inverseBind;
     if (skin.inverseBindMatrices >= 0) {
       inverseBind = reader.floats(skin.inverseBindMatrices, gltf::Use::kMatrix, 16);
       if (inverseBind.size() < 16 * skin.joints.size()) throw badInput(at, "has fewer inverseBindMatrices than joints");
@@ -225,7 +225,7 @@ struct Walker {
       if (!finiteMatrix(joints.back())) throw badInput(at, "joint " + std::to_string(j) + "'s transform is not finite");
     }
     const std::size_t vertices = part.positions.size();
-    std::vector<std::vector<float>> indices, weights;  // per set of four influences
+    std::vector<HugeVector<float>> indices, weights;  // per set of four influences
     for (int set = 0;; ++set) {
       const auto j = primitive.attributes.find("JOINTS_" + std::to_string(set));
       const auto w = primitive.attributes.find("WEIGHTS_" + std::to_string(set));
@@ -332,7 +332,7 @@ struct Walker {
     const tinygltf::Value& e = it->second;
     if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject()) throw badInput(at, "has no attributes object");
     const tinygltf::Value& attributes = e.Get("attributes");
-    std::vector<float> values[3];  // translation, rotation, scale
+    HugeVector<float> values[3];  // translation, rotation, scale
     const struct { const char* name; gltf::Use use; int components; } kFields[] = {
         {"TRANSLATION", gltf::Use::kMatrix, 3}, {"ROTATION", gltf::Use::kRotation, 4}, {"SCALE", gltf::Use::kMatrix, 3}};
     std::size_t count = 0;

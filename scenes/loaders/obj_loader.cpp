@@ -154,7 +154,7 @@ Mesh loadObj(const std::string& path) {
   const bool allUv = anyUv, allNormal = anyNormal;
 
   Mesh mesh;
-  std::vector<float> uvs, normals;
+  HugeVector<float> uvs, normals;
   std::unordered_map<CornerKey, unsigned, CornerHash> corners;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t offset = 0;

@@ -355,10 +355,10 @@ TEST(GltfLoader, QuantizedAttributesLoadWhereTheFileUsesKhrMeshQuantization) {
   expectPositions(mesh, {{0, 0, 0}, {1, -1, 0}, {0, -1, 16384.0f / 32767.0f}}, "quantised positions");
   const Attribute* normal = mesh.findAttribute("normal");
   ASSERT_NE(normal, nullptr);
-  EXPECT_EQ(normal->values, (std::vector<float>{0, 0, 1, 0, 0, -1, 0, -1, 0}));
+  EXPECT_EQ(normal->values, (HugeVector<float>{0, 0, 1, 0, 0, -1, 0, -1, 0}));
   const Attribute* uv = mesh.findAttribute("uv");
   ASSERT_NE(uv, nullptr);
-  EXPECT_EQ(uv->values, (std::vector<float>{0, 0, 1000, 0, 0, 65535}));
+  EXPECT_EQ(uv->values, (HugeVector<float>{0, 0, 1000, 0, 0, 65535}));
 
   // Normals may not be quantised without normalisation, even with the extension.
   GltfBuilder raw = b;
@@ -397,11 +397,11 @@ TEST(GltfLoader, MorphTargetsApplyAtTheWeightsInForce) {
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "no weights: the base shape");
   mesh = loadGltf(dir.write("mesh.gltf", b.text(primitive, R"(, "weights": [0.5, 1])"))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}}, "the mesh's weights");
-  EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0.5f, 0, 1.5f, 0, 0.5f, 1}));
-  EXPECT_EQ(mesh.findAttribute("speed")->values, (std::vector<float>{11, 22, -27}));
+  EXPECT_EQ(mesh.findAttribute("uv")->values, (HugeVector<float>{0.5f, 0, 1.5f, 0, 0.5f, 1}));
+  EXPECT_EQ(mesh.findAttribute("speed")->values, (HugeVector<float>{11, 22, -27}));
   mesh = loadGltf(dir.write("node.gltf", b.text(primitive, R"(, "weights": [0.5, 1])", "", R"(, "weights": [1.5, 0])"))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 4, 0}}, "the node's weights override the mesh's");
-  EXPECT_EQ(mesh.findAttribute("uv")->values, (std::vector<float>{0, 0, 1, 0, 0, 1}));
+  EXPECT_EQ(mesh.findAttribute("uv")->values, (HugeVector<float>{0, 0, 1, 0, 0, 1}));
 
   testing::expectError([&] { loadGltf(dir.write("count.gltf", b.text(primitive, R"(, "weights": [1])"))); },
                        ExitCode::kBadInput, {"meshes[0].primitives[0]", "has 2 morph targets, but 1 weights are given"},
@@ -474,7 +474,7 @@ TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
       dir.write("sets.gltf", b.text(R"("attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2, "COLOR_1": 3})"));
   const Scene scene = loadScene(path);
   ASSERT_NE(scene.mesh.findAttribute("uv1"), nullptr);
-  EXPECT_EQ(scene.mesh.findAttribute("uv1")->values, (std::vector<float>{0, 0, 1, 0, 0, 0.2f}));
+  EXPECT_EQ(scene.mesh.findAttribute("uv1")->values, (HugeVector<float>{0, 0, 1, 0, 0, 0.2f}));
   ASSERT_NE(scene.mesh.findAttribute("color1"), nullptr);
   EXPECT_EQ(scene.mesh.findAttribute("color1")->components, 4);
   EXPECT_EQ(scene.mesh.findAttribute("color"), nullptr);
@@ -661,12 +661,12 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
   expectPositions(mesh, {{0, 0, 5}, {1, float(2.0 * 127 / 255), 5}, {0, 3, 5}}, "joint raised");
   // Joint 2 turned a quarter about x: vertex 2's normal turns with it.
   mesh = loadGltf(dir.write("turned.gltf", file(R"("translation": [0, 1, 0], "rotation": [0.7071067811865476, 0, 0, 0.7071067811865476])"))).mesh;
-  const std::vector<float>& n = mesh.findAttribute("normal")->values;
+  const auto& n = mesh.findAttribute("normal")->values;
   EXPECT_NEAR(n[6], 0.0f, 1e-6f);
   EXPECT_NEAR(n[7], -1.0f, 1e-6f);
   EXPECT_NEAR(n[8], 0.0f, 1e-6f);
   EXPECT_EQ(n[2], 1.0f) << "vertex 0 stays on joint 1, which does not turn";
-  const std::vector<float>& t = mesh.findAttribute("tangent")->values;  // vertex 2's (0, 1, 0) turns to +z
+  const auto& t = mesh.findAttribute("tangent")->values;  // vertex 2's (0, 1, 0) turns to +z
   EXPECT_EQ(std::vector<float>(t.begin(), t.begin() + 4), (std::vector<float>{1, 0, 0, 1}));
   EXPECT_NEAR(t[8], 0.0f, 1e-6f);
   EXPECT_NEAR(t[9], 0.0f, 1e-6f);

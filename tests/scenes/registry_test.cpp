@@ -89,13 +89,13 @@ TEST(MeshValidation, RefusesNonFinitePositionsBadIndicesAndBadAttributes) {
   mesh.triangles[0].z = 3;
   EXPECT_EQ(validationCode(mesh), int(ExitCode::kBadInput));
   mesh = oneTriangle();
-  mesh.attributes.push_back({"uv", 2, std::vector<float>(5)});
+  mesh.attributes.push_back({"uv", 2, HugeVector<float>(5)});
   EXPECT_EQ(validationCode(mesh), int(ExitCode::kBadInput));
   mesh = oneTriangle();
-  mesh.attributes.push_back({"bad name", 1, std::vector<float>(3)});
+  mesh.attributes.push_back({"bad name", 1, HugeVector<float>(3)});
   EXPECT_EQ(validationCode(mesh), int(ExitCode::kBadInput));
   mesh = oneTriangle();
-  mesh.attributes.push_back({"uv", 5, std::vector<float>(15)});
+  mesh.attributes.push_back({"uv", 5, HugeVector<float>(15)});
   EXPECT_EQ(validationCode(mesh), int(ExitCode::kBadInput));
 }
 
