@@ -10,7 +10,11 @@
 
 namespace rc {
 
-std::string readInputFile(const std::string& path) {
+namespace {
+
+// Checks the file, then reads it into a container of its size made by `make`.
+template <typename Container, typename Make>
+Container readChecked(const std::string& path, Make make) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
@@ -23,10 +27,24 @@ std::string readInputFile(const std::string& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ioError(path, std::string("cannot read: ") + std::strerror(errno));
-  std::string text(size, '\0');
-  in.read(text.data(), std::streamsize(size));
+  Container bytes = make(std::size_t(size));
+  in.read(bytes.data(), std::streamsize(size));
   if (in.gcount() != std::streamsize(size)) throw ioError(path, "cannot read: short read");
-  return text;
+  return bytes;
+}
+
+}  // namespace
+
+std::string readInputFile(const std::string& path) {
+  return readChecked<std::string>(path, [](std::size_t size) { return std::string(size, '\0'); });
+}
+
+PlaneVector<char> readLargeInputFile(const std::string& path) {
+  return readChecked<PlaneVector<char>>(path, [](std::size_t size) {
+    PlaneVector<char> bytes;
+    bytes.resize(size);  // default-initialised: not written before the read
+    return bytes;
+  });
 }
 
 }  // namespace rc

@@ -1,5 +1,7 @@
 // OBJ loading: face-varying corners, triangulation, and bad files refused with their line.
 #include <gtest/gtest.h>
+#include <sys/inotify.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -31,6 +33,46 @@ TEST(ObjLoader, FaceVaryingCornersBecomeSeparateVerticesWithTheirOwnUv) {
   EXPECT_EQ(uv->values[2 * second.x], 0.5f);
   EXPECT_EQ(uv->values[2 * second.y + 1], 0.75f);
   EXPECT_EQ(mesh.findAttribute("normal"), nullptr);
+}
+
+// Opens of a file seen by an inotify watch on it since the last call.
+class OpenWatch {
+ public:
+  explicit OpenWatch(const std::string& file) : fd_(inotify_init1(IN_NONBLOCK | IN_CLOEXEC)) {
+    ok_ = fd_ >= 0 && inotify_add_watch(fd_, file.c_str(), IN_OPEN) >= 0;
+  }
+  ~OpenWatch() {
+    if (fd_ >= 0) close(fd_);
+  }
+  bool ok() const { return ok_; }
+  int opens() {
+    int n = 0;
+    alignas(inotify_event) char buffer[4096];
+    for (ssize_t got; (got = read(fd_, buffer, sizeof buffer)) > 0;) {
+      for (ssize_t at = 0; at < got;) {
+        const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
+        n += (event->mask & IN_OPEN) != 0;
+        at += ssize_t(sizeof(inotify_event) + event->len);
+      }
+    }
+    return n;
+  }
+
+ private:
+  int fd_;
+  bool ok_ = false;
+};
+
+TEST(ObjLoader, MtllibIsNeverOpened) {
+  TempDir dir;
+  const std::string mtl = dir.write("look.mtl", "newmtl red\nKd 1 0 0\n");
+  const std::string path = dir.write("lib.obj", "mtllib look.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+  OpenWatch watch(mtl);
+  ASSERT_TRUE(watch.ok()) << "inotify is not available";
+  EXPECT_EQ(loadObj(path).triangleCount(), 1u);
+  EXPECT_EQ(watch.opens(), 0) << "loading lib.obj opened look.mtl";
+  std::ifstream(mtl).get();
+  EXPECT_EQ(watch.opens(), 1) << "the watch does not see an open";
 }
 
 TEST(ObjLoader, ConvexPolygonsAreFannedAndNormalsRead) {
