@@ -16,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::uint32_t readU32(const std::string& bytes, std::size_t offset) {
+std::uint32_t readU32(std::string_view bytes, std::size_t offset) {
   std::uint32_t value;
   std::memcpy(&value, bytes.data() + offset, 4);  // GLB is little-endian, as is x86-64
   return value;
@@ -36,7 +36,7 @@ bool insideFolder(const std::string& file, const std::string& folder) {
 
 }  // namespace
 
-std::string glbJsonChunk(const std::string& bytes, const std::string& path) {
+std::string glbJsonChunk(std::string_view bytes, const std::string& path) {
   if (bytes.size() < 20) throw badInput(at(path, 0), "too short for a GLB header and JSON chunk");
   if (readU32(bytes, 0) != 0x46546C67u) throw badInput(at(path, 0), "wrong magic, not 'glTF'");
   if (readU32(bytes, 4) != 2) throw badInput(at(path, 4), "GLB version " + std::to_string(readU32(bytes, 4)) + ", expected 2");
@@ -49,12 +49,12 @@ std::string glbJsonChunk(const std::string& bytes, const std::string& path) {
   if (20 + chunkLength > bytes.size()) {
     throw badInput(at(path, 12), "JSON chunk length " + std::to_string(chunkLength) + " runs past the end of the file");
   }
-  return bytes.substr(20, std::size_t(chunkLength));
+  return std::string(bytes.substr(20, std::size_t(chunkLength)));
 }
 
-nlohmann::json parseJson(const std::string& original, const EmbeddedData& embedded, const std::string& path) {
+nlohmann::json parseJson(std::string_view original, const EmbeddedData& embedded, const std::string& path) {
   try {
-    return nlohmann::json::parse(embedded.changed() ? embedded.json : original);
+    return nlohmann::json::parse(embedded.changed() ? std::string_view(embedded.json) : original);
   } catch (const nlohmann::json::exception& e) {
     if (!embedded.changed()) throw badInput(path, std::string("invalid JSON: ") + e.what());
   }
@@ -210,7 +210,7 @@ void AccessorReader::copy(const Range& range, std::uint64_t count, std::uint64_t
   for (std::uint64_t i = 0; i < count; ++i) std::memcpy(out + i * element, range.base + i * range.stride, std::size_t(element));
 }
 
-std::vector<unsigned char> AccessorReader::elements(int index, int components, const std::string& what) const {
+HugeVector<unsigned char> AccessorReader::elements(int index, int components, const std::string& what) const {
   const tinygltf::Accessor& a = accessor(index, what);
   const std::string at = where(index);
   if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components) {
@@ -233,7 +233,7 @@ std::vector<unsigned char> AccessorReader::elements(int index, int components, c
     if (a.byteOffset > (std::uint64_t(1) << 62)) throw badInput(at, "byteOffset " + std::to_string(a.byteOffset) + " is out of range");
     dense = locate(a.bufferView, (long long)a.byteOffset, a.count, element, true, at);
   }
-  std::vector<unsigned char> bytes(std::size_t(a.count * element), 0);
+  HugeVector<unsigned char> bytes(std::size_t(a.count * element), 0);
   if (a.bufferView >= 0) copy(dense, a.count, element, bytes.data());
   if (!a.sparse.isSparse) return bytes;
 
@@ -285,7 +285,7 @@ HugeVector<float> AccessorReader::floats(int index, Use use, int components, boo
     }
     throw badInput(where(index), why);
   }
-  const std::vector<unsigned char> bytes = elements(index, components, useName(use));
+  const HugeVector<unsigned char> bytes = elements(index, components, useName(use));
   const bool normalized = a.normalized && type != TINYGLTF_COMPONENT_TYPE_FLOAT;
   HugeVector<float> values(std::size_t(a.count) * std::size_t(components));
   const unsigned char* p = bytes.data();
@@ -318,7 +318,7 @@ HugeVector<float> AccessorReader::floats(int index, Use use, int components, boo
   return values;
 }
 
-std::vector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount) const {
+HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount) const {
   const tinygltf::Accessor& a = accessor(index, "index");
   const std::string at = where(index);
   if (a.type != TINYGLTF_TYPE_SCALAR) throw badInput(at, "indices must be SCALAR");
@@ -327,9 +327,9 @@ std::vector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
     throw badInput(at, "unsupported index component type " + std::to_string(type) + " (" + typeName(type) + ")");
   }
-  const std::vector<unsigned char> bytes = elements(index, 1, "index");
+  const HugeVector<unsigned char> bytes = elements(index, 1, "index");
   const std::size_t size = std::size_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(type)));
-  std::vector<unsigned> out(std::size_t(a.count));
+  HugeVector<unsigned> out(std::size_t(a.count));
   for (std::size_t i = 0; i < out.size(); ++i) {
     std::uint32_t v = 0;
     std::memcpy(&v, bytes.data() + i * size, size);  // little-endian, as is x86-64

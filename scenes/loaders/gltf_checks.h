@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/plane_allocator.h"
@@ -18,11 +19,11 @@ namespace rc::gltf {
 
 // For a GLB: checks magic, version 2, the declared length against the file size and the JSON
 // chunk's bounds; returns the JSON chunk. Throws badInput naming the byte offset.
-std::string glbJsonChunk(const std::string& bytes, const std::string& path);
+std::string glbJsonChunk(std::string_view bytes, const std::string& path);
 
 // Parses the JSON: takeDataUris's when it changed it, the file's own otherwise. A syntax error
 // is reported at its place in the file's own text: badInput(path, "invalid JSON: ...").
-nlohmann::json parseJson(const std::string& original, const EmbeddedData& embedded, const std::string& path);
+nlohmann::json parseJson(std::string_view original, const EmbeddedData& embedded, const std::string& path);
 
 // Refuses (badInput naming the JSON path) any buffer or image URI that is not a data: URI or a
 // plain relative path inside the file's folder: absolute paths, "..", schemes such as file://
@@ -52,14 +53,14 @@ class AccessorReader {
   // `components` per element, converted to float; `displacement` for a morph target's values.
   HugeVector<float> floats(int index, Use use, int components, bool displacement = false) const;
   // Vertex indices, each checked against `vertexCount`.
-  std::vector<unsigned> indices(int index, std::size_t vertexCount) const;
+  HugeVector<unsigned> indices(int index, std::size_t vertexCount) const;
   bool quantized() const { return quantized_; }
 
  private:
   std::string where(int index) const;
   const tinygltf::Accessor& accessor(int index, const std::string& what) const;
   // The accessor's elements packed tightly, sparse replacements applied.
-  std::vector<unsigned char> elements(int index, int components, const std::string& what) const;
+  HugeVector<unsigned char> elements(int index, int components, const std::string& what) const;
   struct Range {
     const unsigned char* base;
     std::uint64_t stride;

@@ -220,7 +220,7 @@ std::vector<unsigned char> decodeBase64(std::string_view data, std::size_t offse
 
 }  // namespace
 
-EmbeddedData takeDataUris(const std::string& json, const std::string& path) {
+EmbeddedData takeDataUris(std::string_view json, const std::string& path) {
   EmbeddedData result;
   // A file that already holds the names' prefix keeps its text: no name could then be told from
   // a string of the file's own (which checkUris refuses anyway, for its '*').

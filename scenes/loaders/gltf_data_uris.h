@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rc::gltf {
@@ -32,6 +33,6 @@ struct EmbeddedData {
 // Strings the scan cannot take as they are written (with JSON escapes, or under a key spelled
 // with escapes), and any text that is not well-formed JSON as far as the scan can tell, are
 // left as they are, for the parsers to read or refuse.
-EmbeddedData takeDataUris(const std::string& json, const std::string& path);
+EmbeddedData takeDataUris(std::string_view json, const std::string& path);
 
 }  // namespace rc::gltf

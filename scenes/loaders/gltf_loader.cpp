@@ -156,13 +156,14 @@ struct Walker {
       morph(primitive, weights, semantic.c_str(), gltf::Use::kCustom, components, values, where);
       part.attributes.push_back({name, components, std::move(values)});
     }
-    std::vector<unsigned> order;
+    HugeVector<unsigned> order;
     if (primitive.indices >= 0) {
       order = reader.indices(primitive.indices, part.positions.size());
     } else {
       for (unsigned i = 0; i < part.positions.size(); ++i) order.push_back(i);
     }
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    part.triangles.reserve(mode == TINYGLTF_MODE_TRIANGLES ? order.size() / 3 : order.size());
     for (std::size_t i = 0; i + 2 < order.size();) {
       if (mode == TINYGLTF_MODE_TRIANGLES) {
         part.triangles.push_back({order[i], order[i + 1], order[i + 2]});
@@ -452,9 +453,11 @@ struct Walker {
 }  // namespace
 
 GltfContent loadGltf(const std::string& path) {
-  const std::string bytes = readInputFile(path);
-  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-  const std::string json = binary ? gltf::glbJsonChunk(bytes, path) : bytes;
+  const PlaneVector<char> file = readLargeInputFile(path);
+  const std::string_view bytes(file.data(), file.size());
+  const bool binary = bytes.substr(0, 4) == "glTF";
+  const std::string chunk = binary ? gltf::glbJsonChunk(bytes, path) : std::string();
+  const std::string_view json = binary ? std::string_view(chunk) : bytes;
   gltf::EmbeddedData embedded = gltf::takeDataUris(json, path);
   nlohmann::json doc = gltf::parseJson(json, embedded, path);
   gltf::checkUris(doc, embedded, path);
@@ -462,7 +465,7 @@ GltfContent loadGltf(const std::string& path) {
   // The JSON tinygltf reads: the meshopt plan's, else the one without data URIs, else the file's.
   const std::string& newJson = meshopt.changed ? meshopt.json : embedded.json;
   const std::string input = newJson.empty() ? std::string() : binary ? gltf::replaceGlbJson(bytes, newJson) : newJson;
-  const std::string& text = newJson.empty() ? bytes : input;
+  const std::string_view text = newJson.empty() ? bytes : std::string_view(input);
 
   std::error_code ec;
   gltf::LoaderFiles files{std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).parent_path().string(),

@@ -115,16 +115,19 @@ MeshoptPlan planMeshopt(nlohmann::json doc, const std::string& path) {
   return plan;
 }
 
-std::string replaceGlbJson(const std::string& glb, const std::string& json) {
+std::string replaceGlbJson(std::string_view glb, const std::string& json) {
   std::uint32_t oldLength;
   std::memcpy(&oldLength, glb.data() + 12, 4);  // checked by glbJsonChunk
-  const std::string rest = glb.substr(20 + std::size_t(oldLength));
-  std::string chunk = json;
-  while (chunk.size() % 4) chunk += ' ';
-  const std::uint32_t header[5] = {0x46546C67u, 2, std::uint32_t(20 + chunk.size() + rest.size()), std::uint32_t(chunk.size()),
-                                   0x4E4F534Au};
-  std::string out(reinterpret_cast<const char*>(header), sizeof header);
-  return out + chunk + rest;
+  const std::string_view rest = glb.substr(20 + std::size_t(oldLength));
+  const std::size_t padded = (json.size() + 3) / 4 * 4;
+  const std::uint32_t header[5] = {0x46546C67u, 2, std::uint32_t(20 + padded + rest.size()), std::uint32_t(padded), 0x4E4F534Au};
+  std::string out;
+  out.reserve(sizeof header + padded + rest.size());
+  out.append(reinterpret_cast<const char*>(header), sizeof header);
+  out += json;
+  out.append(padded - json.size(), ' ');
+  out += rest;
+  return out;
 }
 
 void decodeMeshopt(tinygltf::Model& model, const MeshoptPlan& plan, const std::string& path) {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rc::gltf {
@@ -35,7 +36,7 @@ struct MeshoptPlan {
 MeshoptPlan planMeshopt(nlohmann::json doc, const std::string& path);
 
 // For a GLB: the same file with its JSON chunk replaced by `json` (the other chunks as they were).
-std::string replaceGlbJson(const std::string& glb, const std::string& json);
+std::string replaceGlbJson(std::string_view glb, const std::string& json);
 
 // Decodes every compressed view into a buffer of its own and points the view at it, so that the
 // model reads as an uncompressed one. Refuses (badInput naming the view) a compressed range
