@@ -108,7 +108,17 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
 
 std::string timingPhrase(int runs) { return runs == 1 ? "one run" : "medians of " + std::to_string(runs) + " runs"; }
 
-std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
+BestReference bestReference(const std::vector<BenchRow::ReferenceBuild>& builds) {
+  BestReference best;
+  for (std::size_t i = 1; i < builds.size(); ++i) {
+    if (builds[i].traceMs < builds[best.fasterTrace].traceMs) best.fasterTrace = i;
+    const BenchRow::ReferenceBuild& b = builds[best.smallerSum];
+    if (builds[i].buildMs + builds[i].traceMs < b.buildMs + b.traceMs) best.smallerSum = i;
+  }
+  return best;
+}
+
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;
   for (const Scene& scene : scenes) {
@@ -131,15 +141,30 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     // frame writes every pixel of every plane): two framebuffers per scene, not one per setting
     // (a bench of the default scenes peaked at 2.24 GB with one each, 1.0 GB with two).
     step(scene.name + ": reference builds");
-    std::vector<double> build, trace;
-    for (int r = 0; r < runs; ++r) {
-      const long long t0 = nowNanoseconds();
-      const ReferenceTracer built(scene, settings.reference);
-      build.push_back(millisecondsSince(t0));
+    // The reference in each build quality measured: the one asked for and, unless it is low,
+    // the low-quality build beside it (built faster; traced faster or slower by the scene).
+    struct Built {
+      ReferenceOptions options;
+      std::vector<double> build, trace;
+      std::unique_ptr<ReferenceTracer> tracer;
+      Framebuffer frame;
+    };
+    std::vector<Built> references(alsoLowBuild && settings.reference.build != EmbreeBuild::kLow ? 2 : 1);
+    references[0].options = settings.reference;
+    if (references.size() == 2) {
+      references[1].options = settings.reference;
+      references[1].options.build = EmbreeBuild::kLow;
     }
-    const ReferenceTracer tracer(scene, settings.reference);
-    Framebuffer reference;
-    tracer.trace(reference);  // faults the memory in
+    for (Built& b : references) {
+      for (int r = 0; r < runs; ++r) {
+        const long long t0 = nowNanoseconds();
+        const ReferenceTracer built(scene, b.options);
+        b.build.push_back(millisecondsSince(t0));
+      }
+      b.tracer = std::make_unique<ReferenceTracer>(scene, b.options);
+      b.tracer->trace(b.frame);  // faults the memory in
+    }
+    const Framebuffer& reference = references[0].frame;  // the errors are measured against it
     struct Live {
       const BenchSetting* setting;
       std::unique_ptr<Rasterizer> rasterizer;
@@ -157,10 +182,12 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     }
     for (int r = 0; r < runs; ++r) {
       step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
-      tracer.trace(reference);
-      const long long start = nowNanoseconds();
-      tracer.trace(reference);
-      trace.push_back(millisecondsSince(start));
+      for (Built& b : references) {
+        b.tracer->trace(b.frame);
+        const long long start = nowNanoseconds();
+        b.tracer->trace(b.frame);
+        b.trace.push_back(millisecondsSince(start));
+      }
       for (std::size_t k = 0; k < live.size(); ++k) {
         Live& l = live[(k + std::size_t(r)) % live.size()];
         l.rasterizer->render(scene, *l.raster);
@@ -216,8 +243,15 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.diagnostics = setting.raster.diagnostics;
       row.cull = setting.raster.culling == Culling::kNone ? "none" : "auto";
       row.referenceIsa = settings.reference.isa;
-      row.referenceBuildMs = median(build);
-      row.referenceTraceMs = median(trace);
+      // The speed-ups count against the reference at its best for each.
+      for (const Built& b : references) row.referenceBuilds.push_back({embreeBuildName(b.options.build), median(b.build), median(b.trace)});
+      const BestReference best = bestReference(row.referenceBuilds);
+      const BenchRow::ReferenceBuild& fasterTrace = row.referenceBuilds[best.fasterTrace];
+      const BenchRow::ReferenceBuild& smallerSum = row.referenceBuilds[best.smallerSum];
+      const std::vector<double>& trace = references[best.fasterTrace].trace;
+      row.referenceBuild = fasterTrace.build;
+      row.referenceBuildMs = fasterTrace.buildMs;
+      row.referenceTraceMs = fasterTrace.traceMs;
       row.speedup = row.referenceTraceMs / row.rasterMs;
       row.rasterRuns = times;
       row.traceRuns = trace;
@@ -226,7 +260,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
         row.speedupMin = r == 0 ? ratio : std::min(row.speedupMin, ratio);
         row.speedupMax = r == 0 ? ratio : std::max(row.speedupMax, ratio);
       }
-      row.speedupWithBuild = (row.referenceBuildMs + row.referenceTraceMs) / row.rasterMs;
+      row.speedupWithBuild = (smallerSum.buildMs + smallerSum.traceMs) / row.rasterMs;
+      row.speedupWithBuildQuality = smallerSum.build;
       row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
       row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
       row.baryMax = report.families[0].stats.max;
@@ -279,14 +314,20 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"stage_ms", {{"transform", r.transformMs}, {"setup", r.setupMs}, {"bin", r.binMs},
                                         {"tiles", r.tilesMs}}},
                           {"raster_isa", r.rasterIsa}, {"diagnostics", r.diagnostics}, {"cull", r.cull},
-                          {"reference_isa", r.referenceIsa}, {"reference_build_ms", r.referenceBuildMs},
-                          {"reference_trace_ms", r.referenceTraceMs},
+                          {"reference_isa", r.referenceIsa}, {"reference_build", r.referenceBuild},
+                          {"reference_build_ms", r.referenceBuildMs}, {"reference_trace_ms", r.referenceTraceMs},
                           {"speedup", r.speedup}, {"speedup_min", r.speedupMin}, {"speedup_max", r.speedupMax},
                           {"speedup_with_build", r.speedupWithBuild},
+                          {"speedup_with_build_quality", r.speedupWithBuildQuality},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
                           {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
                           {"disagreement_fraction", r.disagreementFraction}};
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
+    nlohmann::json builds = nlohmann::json::array();
+    for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
+      builds.push_back({{"build", b.build}, {"build_ms", b.buildMs}, {"trace_ms", b.traceMs}});
+    }
+    row["reference_builds"] = builds;
     row["raster_ms_runs"] = r.rasterRuns;
     row["reference_trace_ms_runs"] = r.traceRuns;
     list.push_back(row);
@@ -333,6 +374,8 @@ BenchResults readBenchJson(const std::string& path) {
       r.diagnostics = j.value("diagnostics", true);
       r.cull = j.value("cull", std::string("auto"));
       r.referenceIsa = j.value("reference_isa", std::string());
+      r.referenceBuild = j.value("reference_build", std::string());
+      r.speedupWithBuildQuality = j.value("speedup_with_build_quality", std::string());
       r.referenceBuildMs = j.at("reference_build_ms").get<double>();
       r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
       r.speedup = j.at("speedup").get<double>();
@@ -393,20 +436,30 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
   out << "scene,triangles,width,height,threads,setting,default,runs,raster_ms,raster_ms_min,raster_ms_max,"
          "transform_ms,setup_ms,bin_ms,tiles_ms,reference_build_ms,reference_trace_ms,speedup,speedup_with_build,"
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
-         "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max\n";
+         "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max,reference_build,"
+         "reference_low_build_ms,reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
+         "speedup_with_build_quality\n";
   char line[768];  // every field after the scene: numbers and short names
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
+    char builds[2][2][32] = {};  // low, medium: build, trace; empty where not measured
+    for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
+      const int k = b.build == "low" ? 0 : b.build == "medium" ? 1 : -1;
+      if (k < 0) continue;
+      std::snprintf(builds[k][0], sizeof builds[k][0], "%.4g", b.buildMs);
+      std::snprintf(builds[k][1], sizeof builds[k][1], "%.4g", b.traceMs);
+    }
     std::snprintf(line, sizeof line,
                   ",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s\n",
                   r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
-                  r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax);
+                  r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax, r.referenceBuild.c_str(),
+                  builds[0][0], builds[0][1], builds[1][0], builds[1][1], r.speedupWithBuildQuality.c_str());
     out << csvQuoted(r.scene) << line;
   }
   return out.str();

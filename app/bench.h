@@ -48,25 +48,45 @@ struct BenchRow {
   bool diagnostics = true;        // wrote the four diagnostic channels
   std::string cull = "auto";      // --cull: "auto" or "none"
   std::string referenceIsa;       // Embree's
+  // The reference in every build quality measured (--embree-build's, or medium and low): its
+  // build and trace, medians over runs.
+  struct ReferenceBuild {
+    std::string build;  // embreeBuildName
+    double buildMs = 0, traceMs = 0;
+  };
+  std::vector<ReferenceBuild> referenceBuilds;
+  std::string referenceBuild;     // the quality that traced faster, whose figures follow
   double referenceBuildMs = 0;    // median over runs
   double referenceTraceMs = 0;    // median over runs
-  double speedup = 0;             // referenceTraceMs / rasterMs
+  double speedup = 0;             // referenceTraceMs / rasterMs: against the faster trace
   // The least and the greatest of the rounds' own ratios: each round's trace over the same
   // round's frame, taken within about a second of each other. How far a slow spell moved the
   // ratio; with an odd number of runs they bracket `speedup`. 0 where not measured (older reports).
   double speedupMin = 0, speedupMax = 0;
   // Every timed frame and trace, in round order (round r: rasterRuns[r], traceRuns[r]).
   std::vector<double> rasterRuns, traceRuns;
-  double speedupWithBuild = 0;    // (build + trace) / raster
+  // (build + trace) / raster, with the build quality whose sum is the smaller (the reference at
+  // its best for one frame): speedupWithBuildQuality names it.
+  double speedupWithBuild = 0;
+  std::string speedupWithBuildQuality;
   double trianglesPerSecond = 0, pixelsPerSecond = 0;
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
 };
+
+// Which of the reference's builds each speed-up counts against: the one that traced faster
+// (speedup), and the one whose build and trace took less (speedupWithBuild); the first on a tie.
+struct BestReference {
+  std::size_t fasterTrace = 0, smallerSum = 0;
+};
+BestReference bestReference(const std::vector<BenchRow::ReferenceBuild>& builds);
 
 // How the times were taken, for the table and the chart: "medians of 7 runs", or "one run".
 std::string timingPhrase(int runs);
 
 // `step` is called before each measured unit of work (progress).
-std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs,
+// The reference is built and traced with settings.reference; with `alsoLowBuild` (and another
+// quality there) the low-quality build is timed and traced beside it, for speedupWithBuild.
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step);
 
 // What the figures were measured on: the CPU (its model name from /proc/cpuinfo, "unknown" where

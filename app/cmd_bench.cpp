@@ -22,7 +22,8 @@ struct BenchArgs {
   std::string json, csv, chart;
   int runs = 5;
   bool quiet = false;
-  bool pinnedIsa = false;  // --embree-isa given
+  bool pinnedIsa = false;    // --embree-isa given
+  bool pinnedBuild = false;  // --embree-build given
   RenderSettings settings;
 };
 
@@ -31,6 +32,9 @@ int runBenchCommand(BenchArgs& args) {
   // Speed-ups count against Embree's fastest mode here unless an ISA is pinned: the default
   // pin (for outputs that do not change with the CPU) is not always the fastest.
   if (!args.pinnedIsa) args.settings.reference.isa = fastestEmbreeIsa();
+  // Likewise the build: medium (Embree's default) and low are both timed, and each speed-up
+  // counts against the better for it, unless a quality is pinned.
+  if (!args.pinnedBuild) args.settings.reference.build = EmbreeBuild::kMedium;
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? std::vector<std::string>{"blob:tris=1000", "blob:tris=100000", "blob:tris=1000000"}
                                     : expandSceneGroups(args.scenes);
@@ -49,17 +53,19 @@ int runBenchCommand(BenchArgs& args) {
   Progress progress(int(scenes.size()) * (args.runs + 2), args.quiet);
   const BenchMachine machine = benchMachine();
   const std::vector<BenchRow> rows =
-      runBench(scenes, args.settings, args.runs, [&](const std::string& what) { progress.step(what); });
+      runBench(scenes, args.settings, args.runs, !args.pinnedBuild, [&](const std::string& what) { progress.step(what); });
 
   std::printf("%s, the reference's trace and the settings timed in turn; "
               "raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
-              "rasterizer kernels: %s unless the setting names another%s%s; reference: Embree %s%s\n",
+              "rasterizer kernels: %s unless the setting names another%s%s; reference: Embree %s%s, %s\n",
               timingPhrase(args.runs).c_str(), resolveThreadCount(args.settings.threads),
               kernelIsaName(resolveKernelIsa(args.settings.raster.isa)),
               args.settings.raster.diagnostics ? "" : "; every setting without the diagnostic channels",
               args.settings.raster.culling == Culling::kNone ? "; every setting drawing back faces (--cull none)" : "",
               args.settings.reference.isa.c_str(),
-              args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)");
+              args.pinnedIsa ? "" : " (the fastest this CPU has; --embree-isa pins another)",
+              args.pinnedBuild ? (std::string(embreeBuildName(args.settings.reference.build)) + " build").c_str()
+                               : "its BVH built in medium and in low quality, each timed (--embree-build pins one)");
   std::printf("machine: %s\n", describe(machine).c_str());
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
@@ -83,8 +89,10 @@ int runBenchCommand(BenchArgs& args) {
                 formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
   }
   std::printf("* default setting; Mtri/s, Mpix/s = millions of triangles, of pixels rendered a second (at the median);\n"
-              "  speedup = reference trace / raster (medians); per round = the least and greatest of each round's\n"
-              "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster;\n"
+              "  speedup = reference trace / raster (medians), with the build quality that traced faster (ref build,\n"
+              "  ref trace: its times; --json: reference_build); per round = the least and greatest of each round's\n"
+              "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster, with the\n"
+              "  build quality whose sum is the smaller (--json: speedup_with_build_quality);\n"
               "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
               "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
               "  --json adds stage times\n");
@@ -117,8 +125,13 @@ void registerBench(CLI::App& root, Action& action) {
       ->description("Embree instruction set of the reference; default: the fastest this CPU has (check and render "
                     "pin avx2)")
       ->default_str("fastest");
+  command->get_option("--embree-build")
+      ->description("quality of the reference's BVH build; default: medium for the trace and low timed beside it for "
+                    "w/build (check and render build low)")
+      ->default_str("both");
   command->callback([args, command, &action] {
     args->pinnedIsa = command->get_option("--embree-isa")->count() > 0;
+    args->pinnedBuild = command->get_option("--embree-build")->count() > 0;
     action = [args] { return runBenchCommand(*args); };
   });
 }

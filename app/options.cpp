@@ -85,6 +85,10 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
   addChoice<std::string>(command, "--embree-isa", s.reference.isa,
                          {{"sse2", "sse2"}, {"sse4.2", "sse4.2"}, {"avx", "avx"}, {"avx2", "avx2"}, {"avx512", "avx512"}},
                          "Embree instruction set, pinned so results do not change with the CPU");
+  addChoice<EmbreeBuild>(command, "--embree-build", s.reference.build,
+                         {{"low", EmbreeBuild::kLow}, {"medium", EmbreeBuild::kMedium}, {"high", EmbreeBuild::kHigh}},
+                         "quality of Embree's BVH build: low builds fastest (one frame), medium and high trace a "
+                         "little faster; only which triangle wins a tie on an edge can move with it");
   addSceneOptions(command, s);
 }
 

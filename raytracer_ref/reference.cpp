@@ -36,6 +36,15 @@ bool cpuSupports(const std::string& isa) {
 
 }  // namespace
 
+const char* embreeBuildName(EmbreeBuild build) {
+  switch (build) {
+    case EmbreeBuild::kLow: return "low";
+    case EmbreeBuild::kMedium: return "medium";
+    case EmbreeBuild::kHigh: return "high";
+  }
+  return "?";
+}
+
 std::string fastestEmbreeIsa() {
   for (const char* isa : {"avx512", "avx2", "avx", "sse4.2"}) {
     if (cpuSupports(isa)) return isa;
@@ -55,7 +64,8 @@ namespace {
 // where none was split, Embree reads in place: they must outlive the scene. Copied into
 // buffers of Embree's own, they were 18 MB to fault in at 1M triangles (about 70 ms of a first
 // build on this machine class, 10 of a later one).
-void buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh, EmbreeTriangles& triangles) {
+void buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh, EmbreeTriangles& triangles,
+                   EmbreeBuild build) {
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   device.check("rtcNewGeometry");
   static_assert(sizeof(glm::uvec3) == 3 * sizeof(unsigned));
@@ -71,6 +81,11 @@ void buildGeometry(EmbreeDevice& device, EmbreeScene& scene, const Mesh& mesh, E
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, 3 * sizeof(unsigned),
                              triangleCount);
   device.check("rtcSetSharedGeometryBuffer");
+  const RTCBuildQuality quality = build == EmbreeBuild::kLow      ? RTC_BUILD_QUALITY_LOW
+                                 : build == EmbreeBuild::kMedium ? RTC_BUILD_QUALITY_MEDIUM
+                                                                 : RTC_BUILD_QUALITY_HIGH;
+  rtcSetGeometryBuildQuality(geometry, quality);
+  rtcSetSceneBuildQuality(scene.get(), quality);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene.get(), geometry);
   rtcReleaseGeometry(geometry);
@@ -106,7 +121,7 @@ struct ReferenceTracer::Impl {
         device("isa=" + o.isa + ",threads=" + std::to_string(threads) + ",verbose=0"),
         embreeScene(device, RTC_SCENE_FLAG_ROBUST) {
     triangles = embreeTriangles(scene.mesh, scene.camera, threads);
-    buildGeometry(device, embreeScene, scene.mesh, triangles);
+    buildGeometry(device, embreeScene, scene.mesh, triangles, o.build);
   }
 };
 
@@ -181,6 +196,7 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
   fb.attributes[channels::header::kMode] = "exact";
   fb.attributes[channels::header::kPrecision] = "double";
   fb.attributes["rastercheck.embreeIsa"] = options.isa;
+  fb.attributes["rastercheck.embreeBuild"] = embreeBuildName(options.build);
   char band[32];
   std::snprintf(band, sizeof band, "%.6g", referenceEdgeBand(camera));
   fb.attributes[channels::header::kEdgeBand] = band;

@@ -15,6 +15,8 @@
 namespace {
 
 using rc::app::BenchRow;
+using rc::app::BestReference;
+using rc::app::bestReference;
 namespace chart = rc::app::chart;
 
 TEST(BenchSettings, TheCommandLinesCombinationJoinsTheSweepUnlessItIsThere) {
@@ -85,6 +87,27 @@ TEST(BenchSettings, VariantsTheCommandLineAlreadyRunsAreLeftOut) {
     const bool expected = !(oneCore && variant == "perspective-float-8bit-1thread");
     EXPECT_EQ(std::count(all.begin(), all.end(), variant), expected ? 1 : 0) << variant;
   }
+}
+
+// The speed-ups count against the reference at its best for each: at 1M triangles the medium
+// build traced faster and the low one took less in all (session 30's figures).
+TEST(BenchReference, EachSpeedupTakesTheBuildThatIsBestForIt) {
+  using B = BenchRow::ReferenceBuild;
+  const BestReference best = bestReference({B{"medium", 156.5, 53.7}, B{"low", 56.6, 58.3}});
+  EXPECT_EQ(best.fasterTrace, 0u);
+  EXPECT_EQ(best.smallerSum, 1u);
+  const BestReference swapped = bestReference({B{"low", 56.6, 58.3}, B{"medium", 156.5, 53.7}});
+  EXPECT_EQ(swapped.fasterTrace, 1u);
+  EXPECT_EQ(swapped.smallerSum, 0u);
+  const BestReference cube = bestReference({B{"medium", 0.27, 3.73}, B{"low", 0.19, 2.93}});
+  EXPECT_EQ(cube.fasterTrace, 1u);
+  EXPECT_EQ(cube.smallerSum, 1u);
+  const BestReference one = bestReference({B{"high", 200, 50}});
+  EXPECT_EQ(one.fasterTrace, 0u);
+  EXPECT_EQ(one.smallerSum, 0u);
+  const BestReference tie = bestReference({B{"medium", 10, 5}, B{"low", 5, 5}});
+  EXPECT_EQ(tie.fasterTrace, 0u);  // the first on a tie
+  EXPECT_EQ(tie.smallerSum, 1u);
 }
 
 TEST(BenchChart, ParetoFrontKeepsWhatNothingElseBeatsOnBothAxes) {

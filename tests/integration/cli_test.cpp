@@ -437,10 +437,12 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
   int lines = 0;
   while (std::getline(csv, line)) {
     if (lines == 0) {
-      EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max")) << line;
+      EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max,reference_build,reference_low_build_ms,"
+                                 "reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
+                                 "speedup_with_build_quality")) << line;
     }
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 31) << "32 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 37) << "38 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
@@ -498,12 +500,48 @@ TEST(Cli, BenchTracesWithThePinnedEmbreeIsa) {
   const fs::path json = temp.path() / "b.json";
   const CliRun r = run("bench floor --runs 1 -q --embree-isa sse2 --json " + json.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("reference: Embree sse2\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("reference: Embree sse2, its BVH built in medium and in low quality"), std::string::npos) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
   for (const auto& row : j["rows"]) EXPECT_EQ(row["reference_isa"], "sse2");
   const CliRun unpinned = run("bench floor --runs 1 -q");
   EXPECT_NE(unpinned.output.find("reference: Embree " + rc::fastestEmbreeIsa() + " (the fastest"), std::string::npos)
       << unpinned.output;
+}
+
+// bench times the reference's BVH built in medium and in low quality and counts each speed-up
+// against the better for it: the trace against the faster trace, the sum against the smaller
+// sum. --embree-build pins one quality.
+TEST(Cli, BenchCountsEachSpeedupAgainstTheBetterBuildQuality) {
+  const rc::testing::TempDir temp;
+  const fs::path json = temp.path() / "b.json";
+  const CliRun both = run("bench cube blob:tris=20000 --size 640x360 --runs 3 -q --json " + json.string());
+  ASSERT_EQ(both.exitCode, 0) << both.output;
+  for (const auto& row : nlohmann::json::parse(std::ifstream(json))["rows"]) {
+    ASSERT_EQ(row["reference_builds"].size(), 2u) << row;
+    EXPECT_EQ(row["reference_builds"][0]["build"], "medium");
+    EXPECT_EQ(row["reference_builds"][1]["build"], "low");
+    double trace = 1e300, sum = 1e300;
+    std::string fasterTrace, smallerSum;
+    for (const auto& b : row["reference_builds"]) {
+      const double t = b["trace_ms"].get<double>(), total = b["build_ms"].get<double>() + t;
+      if (t < trace) trace = t, fasterTrace = b["build"];
+      if (total < sum) sum = total, smallerSum = b["build"];
+    }
+    const double raster = row["raster_ms"].get<double>();
+    EXPECT_EQ(row["reference_build"], fasterTrace) << row;
+    EXPECT_EQ(row["reference_trace_ms"].get<double>(), trace) << row;
+    EXPECT_NEAR(row["speedup"].get<double>(), trace / raster, 1e-9 * trace / raster) << row;
+    EXPECT_EQ(row["speedup_with_build_quality"], smallerSum) << row;
+    EXPECT_NEAR(row["speedup_with_build"].get<double>(), sum / raster, 1e-9 * sum / raster) << row;
+  }
+  const CliRun pinned = run("bench cube --runs 1 -q --embree-build high --json " + json.string());
+  ASSERT_EQ(pinned.exitCode, 0) << pinned.output;
+  EXPECT_NE(pinned.output.find(", high build\n"), std::string::npos) << pinned.output;
+  for (const auto& row : nlohmann::json::parse(std::ifstream(json))["rows"]) {
+    ASSERT_EQ(row["reference_builds"].size(), 1u) << row;
+    EXPECT_EQ(row["reference_build"], "high");
+    EXPECT_EQ(row["speedup_with_build_quality"], "high");
+  }
 }
 
 // The chart's format follows its name: .png writes a PNG; a name that is neither .svg nor .png
@@ -852,7 +890,7 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
     }
   }
   EXPECT_FALSE(quoted) << line;
-  ASSERT_EQ(fields.size(), 32u) << line;
+  ASSERT_EQ(fields.size(), 38u) << line;
   EXPECT_EQ(fields[0], obj.string());
   EXPECT_EQ(fields[1], "1");  // triangles
 }
