@@ -13,6 +13,7 @@ namespace rc::gltf {
 namespace {
 
 constexpr std::string_view kNamePrefix = "*rastercheck-embedded-";
+constexpr std::size_t kMaxDepth = 64;  // nesting the scan follows
 
 // A uri string's contents (quotes excluded) found at /buffers/N/uri or /images/N/uri.
 struct UriString {
@@ -91,6 +92,9 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
             f.image = parent->image;
             f.index = parent->index;
           }
+          // Deeper than any glTF needs: left to the parsers (whose own stacks grow with it),
+          // so that this scan's never does.
+          if (stack.size() == kMaxDepth) return std::nullopt;
           stack.push_back(f);
           ++i;
           want = f.object ? Want::kKeyOrClose : Want::kValueOrClose;

@@ -74,11 +74,15 @@ TEST(GltfDataUris, TextTheScanCannotFollowIsLeftForTheParsers) {
            R"({"buff\u0065rs": [{"uri": ")" + uri + R"("}]})",                 // a key spelled with an escape
            R"({"buffers": [{"uri": ")" + uri + R"("}], "x": "*rastercheck-embedded-0"})",  // holds the names' prefix
            R"(["buffers", {"uri": ")" + uri + R"("}])",                        // not an object at the top
+           R"({"buffers": [{"uri": ")" + uri + R"("}], "deep": )" + std::string(64, '[') + std::string(64, ']') + "}",
        }) {
     const EmbeddedData taken = takeDataUris(json, "f.gltf");
     EXPECT_FALSE(taken.changed()) << json;
     EXPECT_TRUE(taken.buffers.empty()) << json;
   }
+  // Nesting up to 64 levels (the top object and 63 arrays) is followed.
+  const std::string deep = R"({"buffers": [{"uri": ")" + uri + R"("}], "deep": )" + std::string(63, '[') + std::string(63, ']') + "}";
+  EXPECT_EQ(takeDataUris(deep, "f.gltf").buffers.size(), 1u);
   // Escaped quotes and backslashes in other strings do not end them early.
   const std::string json = R"({"extras": "a \"b\" \\", "buffers": [{"name": "q\\\"", "uri": ")" + uri + R"("}]})";
   const EmbeddedData taken = takeDataUris(json, "f.gltf");
