@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/base64.h"
 #include "core/error.h"
 
 namespace rc::gltf {
@@ -157,11 +158,10 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
   }
 }
 
-constexpr std::array<std::int8_t, 256> kBase64Digits = [] {
+constexpr std::array<std::int8_t, 256> kDigitValues = [] {
   std::array<std::int8_t, 256> t{};
   for (auto& v : t) v = -1;
-  const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  for (int i = 0; i < 64; ++i) t[std::uint8_t(digits[i])] = std::int8_t(i);
+  for (int i = 0; i < 64; ++i) t[std::uint8_t(kBase64Digits[i])] = std::int8_t(i);
   return t;
 }();
 
@@ -196,17 +196,17 @@ std::vector<unsigned char> decodeBase64(std::string_view data, std::size_t offse
   for (std::size_t k = 0; k < length; k += 4) {  // find the first bad character before decoding
     const std::size_t m = std::min<std::size_t>(4, length - k);
     int bad = 0;
-    for (std::size_t j = 0; j < m; ++j) bad |= kBase64Digits[std::uint8_t(data[k + j])];
+    for (std::size_t j = 0; j < m; ++j) bad |= kDigitValues[std::uint8_t(data[k + j])];
     if (bad < 0) {
       for (std::size_t j = 0; j < m; ++j) {
-        if (kBase64Digits[std::uint8_t(data[k + j])] < 0) refuse(k + j, shown(data[k + j]) + " is not a base64 digit");
+        if (kDigitValues[std::uint8_t(data[k + j])] < 0) refuse(k + j, shown(data[k + j]) + " is not a base64 digit");
       }
     }
   }
   if (length % 4 == 1) refuse(length - 1, "a lone digit ends it");
   if (padding > 0 && (length + padding) % 4 != 0) refuse(length, "its '=' padding does not fill the last group of four");
   std::vector<unsigned char> out(length / 4 * 3 + (length % 4 == 0 ? 0 : length % 4 - 1));
-  const auto digit = [&](std::size_t k) { return std::uint32_t(kBase64Digits[std::uint8_t(data[k])]); };
+  const auto digit = [&](std::size_t k) { return std::uint32_t(kDigitValues[std::uint8_t(data[k])]); };
   std::size_t o = 0, k = 0;
   for (; k + 4 <= length; k += 4, o += 3) {
     const std::uint32_t v = digit(k) << 18 | digit(k + 1) << 12 | digit(k + 2) << 6 | digit(k + 3);
