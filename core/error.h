@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace rc {
 
@@ -18,9 +19,29 @@ enum class ExitCode : int {
   kInternal = 5,    // a library (Embree, OpenEXR) failed in a way no input explains: a bug
 };
 
+// The message with every control byte but newline and tab written as \xNN. Messages quote
+// bytes of input files (a token, a URI, a parser's excerpt): raw, a NUL would cut the message
+// short where it is printed as a C string, and an escape sequence would reach the terminal.
+inline std::string printable(std::string_view message) {
+  std::string out;
+  out.reserve(message.size());
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) {
+      constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 class Error : public std::runtime_error {
  public:
-  Error(ExitCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  Error(ExitCode code, const std::string& message) : std::runtime_error(printable(message)), code_(code) {}
   ExitCode code() const { return code_; }
 
  private:

@@ -41,3 +41,13 @@ TEST(TextRenderer, MeasuresWhatItDraws) {
 }
 
 }  // namespace
+
+// Error messages quote bytes of input files: every control byte but newline and tab is written
+// as \xNN, so a NUL cannot cut a message short where it is printed as a C string and an escape
+// sequence cannot reach the terminal. Text, UTF-8 included, is kept as it is.
+TEST(ErrorMessage, ControlBytesAreWrittenAsHex) {
+  const std::string quoted = std::string("'1\x1b[2J' \0 \x7f\r", 12) + "\n\tkept: caf\xc3\xa9";
+  const rc::Error e = rc::badInput("a.obj:3", quoted);
+  EXPECT_EQ(std::string(e.what()), "a.obj:3: '1\\x1b[2J' \\x00 \\x7f\\x0d\n\tkept: caf\xc3\xa9");
+  EXPECT_EQ(rc::printable("plain text"), "plain text");
+}
