@@ -8,6 +8,7 @@
 #include <istream>
 #include <sstream>
 #include <streambuf>
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 #include <unordered_map>
@@ -23,30 +24,89 @@ namespace {
 // read as another face with its indices shifted, so such a face is refused.
 constexpr std::size_t kMaxCorners = 255;
 
+// Calls fn(line, statement) for every line of the text, split where tinyobjloader splits it
+// (its safeGetline): at "\n", at "\r\n" and at a lone "\r". The checks below must see the
+// statements the parser sees: split at "\n" alone, "# note\rv 0 nan 0" was a comment to them
+// and a vertex at (0, 0, 0) to the parser, and a file with classic Mac line endings one long
+// line. The next "\n" and "\r" are each found once (memchr), so a run of lone "\r" costs no
+// rescans.
+template <typename Fn>
+void forEachLine(std::string_view text, Fn&& fn) {
+  constexpr std::size_t npos = std::string_view::npos;
+  std::size_t nextNewline = text.find('\n'), nextReturn = text.find('\r');
+  std::size_t line = 1;
+  for (std::size_t start = 0; start < text.size(); ++line) {
+    if (nextNewline < start) nextNewline = text.find('\n', start);
+    if (nextReturn < start) nextReturn = text.find('\r', start);
+    std::size_t end = std::min(nextNewline, nextReturn);
+    if (end == npos) end = text.size();
+    fn(line, text.substr(start, end - start));
+    start = end + 1;
+    if (end == nextReturn && start == nextNewline) ++start;  // "\r\n" ends one line
+  }
+}
+
+// What is wrong with a face corner, or nullptr. tinyobjloader's parseTriple reads v, v/vt,
+// v//vn or v/vt/vn, each index with atoi, which takes "1.5" as 1, "x" as 0 and "4294967297"
+// as 1: so each index must be an optional sign and digits that fit an int, and not 0 (OBJ
+// counts from 1; negative indices count back from the end).
+const char* faceCornerProblem(std::string_view corner) {
+  constexpr const char* kNotACorner =
+      "is not a face corner (v, v/vt, v//vn or v/vt/vn, each a whole number)";
+  constexpr const char* kZero = "is a face corner with an index of 0 (indices start at 1; negative ones count back)";
+  constexpr const char* kTooLarge = "is a face corner with an index beyond the 32-bit range";
+  const auto index = [&](std::string_view field) -> const char* {
+    if (!field.empty() && field[0] == '+') {
+      field.remove_prefix(1);
+      if (!field.empty() && field[0] == '-') return kNotACorner;  // atoi reads "+-1" as 0
+    }
+    int value = 0;
+    const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (ptr != field.data() + field.size() || ptr == field.data()) return kNotACorner;
+    if (ec == std::errc::result_out_of_range) return kTooLarge;
+    if (ec != std::errc()) return kNotACorner;
+    return value == 0 ? kZero : nullptr;
+  };
+  const std::size_t first = corner.find('/');
+  if (first == std::string_view::npos) return index(corner);
+  if (const char* problem = index(corner.substr(0, first))) return problem;
+  const std::string_view rest = corner.substr(first + 1);
+  const std::size_t second = rest.find('/');
+  if (second == std::string_view::npos) return index(rest);  // v/vt
+  if (second > 0) {
+    if (const char* problem = index(rest.substr(0, second))) return problem;
+  }
+  return index(rest.substr(second + 1));
+}
+
 // Line numbers of the face statements ("f ..."), to name the place of a bad face. Throws
-// badInput for a face of more than kMaxCorners corners.
+// badInput for a face of more than kMaxCorners corners, or a corner faceCornerProblem refuses.
 std::vector<std::size_t> faceLines(std::string_view text, const std::string& path) {
   std::vector<std::size_t> lines;
   const auto blank = [](char c) { return c == ' ' || c == '\t'; };
-  std::size_t line = 1;
-  for (std::size_t start = 0; start < text.size(); ++line) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::size_t j = start;
-    while (j < end && blank(text[j])) ++j;
-    if (j + 1 < end && text[j] == 'f' && blank(text[j + 1])) {
-      lines.push_back(line);
-      std::size_t corners = 0;
-      for (std::size_t k = j + 1; k < end && text[k] != '\r'; ++k) {
-        if (!blank(text[k]) && blank(text[k - 1])) ++corners;
+  forEachLine(text, [&](std::size_t line, std::string_view statement) {
+    std::size_t j = 0;
+    while (j < statement.size() && blank(statement[j])) ++j;
+    if (j + 1 >= statement.size() || statement[j] != 'f' || !blank(statement[j + 1])) return;
+    lines.push_back(line);
+    std::size_t corners = 0;
+    for (std::size_t k = j + 1; k < statement.size();) {
+      while (k < statement.size() && blank(statement[k])) ++k;
+      if (k == statement.size()) break;
+      std::size_t end = k;
+      while (end < statement.size() && !blank(statement[end])) ++end;
+      const std::string_view corner = statement.substr(k, end - k);
+      if (const char* problem = faceCornerProblem(corner)) {
+        throw badInput(path + ":" + std::to_string(line), "'" + std::string(corner.substr(0, 40)) + "' " + problem);
       }
-      if (corners > kMaxCorners) {
-        throw badInput(path + ":" + std::to_string(line), "face has " + std::to_string(corners) + " corners; at most " +
-                                                              std::to_string(kMaxCorners) + " are read (split it)");
-      }
+      ++corners;
+      k = end;
     }
-    start = end + 1;
-  }
+    if (corners > kMaxCorners) {
+      throw badInput(path + ":" + std::to_string(line), "face has " + std::to_string(corners) + " corners; at most " +
+                                                            std::to_string(kMaxCorners) + " are read (split it)");
+    }
+  });
   return lines;
 }
 
@@ -54,11 +114,7 @@ std::vector<std::size_t> faceLines(std::string_view text, const std::string& pat
 // number of a v, vt or vn statement is checked here first: it must parse completely, with
 // std::from_chars (the locale never matters), and be finite as a float.
 void checkNumbers(std::string_view text, const std::string& path) {
-  std::size_t line = 1, start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view statement(text.data() + start, end - start);
+  forEachLine(text, [&](std::size_t line, std::string_view statement) {
     std::size_t i = statement.find_first_not_of(" \t");
     if (i != std::string_view::npos && statement[i] == 'v' && i + 1 < statement.size() &&
         (statement[i + 1] == ' ' || statement[i + 1] == '\t' ||
@@ -66,9 +122,9 @@ void checkNumbers(std::string_view text, const std::string& path) {
           (statement[i + 2] == ' ' || statement[i + 2] == '\t')))) {
       i = statement.find_first_of(" \t", i);
       while (true) {
-        i = statement.find_first_not_of(" \t\r", i);
+        i = statement.find_first_not_of(" \t", i);
         if (i == std::string_view::npos) break;
-        std::size_t j = statement.find_first_of(" \t\r", i);
+        std::size_t j = statement.find_first_of(" \t", i);
         if (j == std::string_view::npos) j = statement.size();
         const std::string_view token = statement.substr(i, j - i);
         float value = 0.0f;
@@ -80,9 +136,7 @@ void checkNumbers(std::string_view text, const std::string& path) {
         i = j;
       }
     }
-    start = end + 1;
-    ++line;
-  }
+  });
 }
 
 // The file's text as a stream, without the copy into a stringbuf that tinyobjloader's
@@ -110,6 +164,7 @@ Mesh loadObj(const std::string& path) {
   const PlaneVector<char> bytes = readLargeInputFile(path);
   const std::string_view text(bytes.data(), bytes.size());
   checkNumbers(text, path);
+  const std::vector<std::size_t> lines = faceLines(text, path);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
@@ -121,9 +176,9 @@ Mesh loadObj(const std::string& path) {
   tinyobj::MaterialStreamReader materialReader(materialStream);
   // Not triangulated (that is done below, polygon.h, so every face keeps its line); no colours.
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &objStream, &materialReader, false, false)) {
+    while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
     throw badInput(path, "not a valid OBJ file: " + error);
   }
-  const std::vector<std::size_t> lines = faceLines(text, path);
 
   std::size_t faceCount = 0;
   for (const tinyobj::shape_t& shape : shapes) faceCount += shape.mesh.num_face_vertices.size();

@@ -18,6 +18,11 @@ Container readChecked(const std::string& path, Make make) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
+  // A missing file, or one in a missing folder, is "no such file"; anything else that stops
+  // the look-up (a symbolic link loop, a folder without search permission) says what it is.
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) {
+    throw ioError(path, "cannot read: " + ec.message());
+  }
   if (ec || !fs::exists(status)) throw ioError(path, "cannot read: no such file");
   if (!fs::is_regular_file(status)) throw ioError(path, "cannot read: not a regular file");
   const std::uintmax_t size = fs::file_size(path, ec);

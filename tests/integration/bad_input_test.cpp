@@ -94,7 +94,7 @@ TEST(BadInput, ObjFiles) {
   TempDir dir;
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   const struct { const char* name; std::string text; const char* fragment; } cases[] = {
-      {"index0.obj", v + "f 0 1 2\n", "index0.obj"},
+      {"index0.obj", v + "f 0 1 2\n", "index0.obj:4: '0' is a face corner with an index of 0"},
       {"range.obj", v + "f 1 2 4\n", "range.obj:4"},
       {"negative.obj", v + "f -99 1 2\n", "negative.obj"},
       {"two.obj", v + "f 1 2\n", "two.obj"},
@@ -107,9 +107,16 @@ TEST(BadInput, ObjFiles) {
       {"nofaces.obj", v, "nofaces.obj"},
   };
   for (const auto& c : cases) expectRefusedCheck(dir, dir.write(c.name, c.text), 3, c.fragment);
-  // CR-only line endings: tinyobjloader does not split lines at a lone CR, so the file reads
-  // as one statement and is refused (it has no faces), never misread.
-  expectRefusedCheck(dir, dir.write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r"), 3, "cr.obj");
+  // CR-only line endings (classic Mac OS) are line endings, as tinyobjloader reads them: the
+  // file loads, and a bad value after a lone CR is found on the line the parser reads it from.
+  EXPECT_EQ(rastercheck("check -q " + dir.write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r")).exitCode, 0);
+  expectRefusedCheck(dir, dir.write("crnan.obj", "v 0 0 0\rv 1 0 0\r# a note\rv 0 nan 0\rf 1 2 3\r"), 3, "crnan.obj:4");
+  // A file's bytes quoted in a message are printed with control bytes escaped: an escape
+  // sequence in a token never reaches the terminal.
+  const Outcome escape = rastercheck("scenes " + dir.write("escape.obj", v + "v 1\x1b[2J 0 0\nf 1 2 4\n"));
+  EXPECT_EQ(escape.exitCode, 3) << escape.output;
+  EXPECT_NE(escape.output.find("escape.obj:4: '1\\x1b[2J' is not a finite float"), std::string::npos) << escape.output;
+  EXPECT_EQ(escape.output.find('\x1b'), std::string::npos) << escape.output;
 }
 
 std::string uint32le(std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -120,7 +121,16 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
   TempDir dir;
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   const struct { const char* name; std::string text; const char* fragment; } cases[] = {
-      {"zero.obj", v + "f 0 1 2\n", "zero.obj"},
+      {"zero.obj", v + "f 0 1 2\n", "zero.obj:4: '0' is a face corner with an index of 0"},
+      {"zerovt.obj", v + "vt 0 0\nf 1/1 2/0 3/1\n", "zerovt.obj:5: '2/0' is a face corner with an index of 0"},
+      {"zerovn.obj", v + "vn 0 0 1\nf 1//1 2//1 3//0\n", "zerovn.obj:5: '3//0'"},
+      // atoi would read these as 1, 1, 0 and 0: refused, never misread
+      {"fraction.obj", v + "f 1.5 2 3\n", "fraction.obj:4: '1.5' is not a face corner"},
+      {"wide.obj", v + "f 4294967297 2 3\n", "wide.obj:4: '4294967297' is a face corner with an index beyond the 32-bit range"},
+      {"word.obj", v + "f one 2 3\n", "word.obj:4: 'one' is not a face corner"},
+      {"signs.obj", v + "f +-1 2 3\n", "signs.obj:4: '+-1' is not a face corner"},
+      {"slash.obj", v + "vt 0 0\nf 1/1/ 2/1 3/1\n", "slash.obj:5: '1/1/' is not a face corner"},
+      {"slashes.obj", v + "f 1/1/1/1 2 3\n", "slashes.obj:4: '1/1/1/1' is not a face corner"},
       {"range.obj", v + "\n\nf 1 2 9\n", "range.obj:6"},
       {"behind.obj", v + "f -99 1 2\n", "behind.obj"},
       {"two.obj", v + "f 1 2\n", "two.obj"},
@@ -128,7 +138,7 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
       {"nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:1"},
       {"inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "inf.obj:2"},
       {"huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n", "huge.obj:3"},
-      {"word.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "word.obj:2"},
+      {"vword.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "vword.obj:2"},
       {"uvword.obj", v + "vt 0 x\nf 1/1 2/1 3/1\n", "uvword.obj:4"},
       {"empty.obj", "", "empty.obj"},
   };
@@ -136,7 +146,13 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
     const std::string path = dir.write(c.name, c.text);
     testing::expectError([&] { loadObj(path); }, ExitCode::kBadInput, {c.fragment}, c.name);
   }
-  testing::expectError([&] { loadObj(dir.file("absent.obj")); }, ExitCode::kIo, {"absent.obj"}, "missing file");
+  testing::expectError([&] { loadObj(dir.file("absent.obj")); }, ExitCode::kIo, {"absent.obj: cannot read: no such file"},
+                       "missing file");
+  // A look-up that fails for another reason says which, not "no such file".
+  std::filesystem::create_symlink("loop2.obj", dir.path() / "loop1.obj");
+  std::filesystem::create_symlink("loop1.obj", dir.path() / "loop2.obj");
+  testing::expectError([&] { loadObj(dir.file("loop1.obj")); }, ExitCode::kIo,
+                       {"loop1.obj: cannot read: Too many levels of symbolic links"}, "symbolic link loop");
   // A face of 255 corners is read; one of 256, which tinyobjloader would read as a face of 0
   // corners with its indices shifted into the next face, is refused naming its line.
   std::string ring;
@@ -146,6 +162,40 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
   EXPECT_EQ(loadObj(dir.write("255.obj", ring + face + "\n")).triangleCount(), 253u);
   testing::expectError([&] { loadObj(dir.write("256.obj", ring + face + " 256\nf 1 2 3\n")); }, ExitCode::kBadInput,
                        {"256.obj:257", "face has 256 corners; at most 255 are read"}, "256 corners");
+}
+
+// Lines end where tinyobjloader ends them: at "\n", "\r\n" or a lone "\r". The checks number
+// lines and find statements the same way, so a value the parser would read as 0 cannot hide
+// behind a lone CR, and a bad line is named as the parser counts it.
+TEST(ObjLoader, LinesEndAtLfCrLfOrALoneCr) {
+  TempDir dir;
+  const std::string lines[] = {"v 0 0 0", "vt 0 0", "v 2 0 0", "vt 1 0", "# a note", "v 0 1 0", "vt 0 1",
+                               "f 1/1 2/2 3/3", "f 3/3 2/2 1/1"};
+  std::map<std::string, std::string> texts;
+  for (const char* end : {"\n", "\r\n", "\r"}) {
+    std::string text;
+    for (const std::string& line : lines) text += line + end;
+    texts[end] = text;
+  }
+  const Mesh lf = loadObj(dir.write("lf.obj", texts["\n"]));
+  ASSERT_EQ(lf.triangleCount(), 2u);
+  for (const char* end : {"\r\n", "\r"}) {
+    const Mesh mesh = loadObj(dir.write("other.obj", texts[end]));
+    EXPECT_EQ(mesh.triangles, lf.triangles) << int(end[0]) << " " << int(end[1]);
+    EXPECT_EQ(mesh.positions, lf.positions);
+    ASSERT_EQ(mesh.attributes.size(), 1u);
+    EXPECT_EQ(mesh.attributes[0].values, lf.attributes[0].values);
+  }
+  // Mixed endings, and a value after a lone CR: line 4 as the parser counts ("\r\n" is one end).
+  const std::string v = "v 0 0 0\r\nv 1 0 0\n# note\rv 0 nan 0\nf 1 2 3\n";
+  testing::expectError([&] { loadObj(dir.write("hidden.obj", v)); }, ExitCode::kBadInput, {"hidden.obj:4: 'nan'"}, "hidden");
+  // A face after a lone CR is a face: 256 corners are refused there too.
+  std::string ring = "# ring\r";
+  for (int i = 0; i < 256; ++i) ring += "v " + std::to_string(std::cos(i * 0.0245)) + " " + std::to_string(std::sin(i * 0.0245)) + " 0\n";
+  std::string face = "f";
+  for (int i = 1; i <= 256; ++i) face += " " + std::to_string(i);
+  testing::expectError([&] { loadObj(dir.write("ring.obj", ring + "# faces\r" + face + "\n")); }, ExitCode::kBadInput,
+                       {"ring.obj:259", "256 corners"}, "256 corners after a lone CR");
 }
 
 // Spot's UVs, against an independent reading of the file: every triangle corner carries the
