@@ -188,6 +188,7 @@ Scene loadScene(const std::string& spec, const RenderSettings& settings) {
   if (settings.fovYDegrees > 0) o.fovYDegrees = settings.fovYDegrees;
   if (!settings.attributes.empty()) o.attributes = settings.attributes;
   o.camera = settings.camera;
+  o.maxTriangles = std::size_t(settings.maxTriangles);
   Scene scene = rc::loadScene(spec, o);
   if (std::size_t(settings.maxTriangles) < scene.mesh.triangleCount()) {
     throw badInput(spec, std::to_string(scene.mesh.triangleCount()) + " triangles exceed --max-triangles " +

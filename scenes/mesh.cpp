@@ -103,6 +103,14 @@ void selectAttributes(Mesh& mesh, const std::vector<std::string>& names, const s
   });
 }
 
+void checkTriangleBudget(std::size_t have, std::size_t adding, std::size_t limit, const std::string& where,
+                         const std::string& what) {
+  if (have > limit || adding > limit - have) {
+    throw badInput(where, what + " takes the scene past " + std::to_string(limit) +
+                              " triangles, the most it may have (--max-triangles)");
+  }
+}
+
 void validateMesh(const Mesh& mesh, const std::string& where) {
   if (mesh.positions.size() >= 0xFFFFFFFFu || mesh.triangles.size() >= 0xFFFFFFFFu) {
     throw badInput(where, "too many vertices or triangles for 32-bit ids");

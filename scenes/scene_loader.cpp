@@ -31,7 +31,7 @@ Scene meshScene(const std::string& spec, Mesh mesh, std::optional<CameraSpec> ca
 // camera rastercheck cannot render through is refused, unless --eye and --target replace its
 // pose: the mesh is then framed as a bare mesh would be, and seen from there.
 Scene gltfScene(const std::string& spec, const SceneOverrides& o) {
-  GltfContent content = loadGltf(spec);
+  GltfContent content = loadGltf(spec, {o.maxTriangles});
   const GltfCamera* chosen = selectGltfCamera(content, o.camera, spec);
   if (!chosen) return meshScene(spec, std::move(content.mesh), std::nullopt, "glTF mesh with a framing camera", o);
   std::string which = gltfCameraName(*chosen);
@@ -53,9 +53,9 @@ Scene loadScene(const std::string& spec, const SceneOverrides& o) {
     throw usageError("--camera " + o.camera + ": chooses among a glTF file's cameras, and " + spec + " is not a glTF file");
   }
   Scene scene = [&] {
-    if (extension == ".obj") return meshScene(spec, loadObj(spec), std::nullopt, "mesh with a framing camera", o);
+    if (extension == ".obj") return meshScene(spec, loadObj(spec, {o.maxTriangles}), std::nullopt, "mesh with a framing camera", o);
     if (gltf) return gltfScene(spec, o);
-    if (extension == ".json") return loadSceneFile(spec);
+    if (extension == ".json") return loadSceneFile(spec, o.maxTriangles);
     return makeBuiltinScene(spec);
   }();
   if (o.width || o.height || o.eye || o.target || o.up || o.fovYDegrees) {

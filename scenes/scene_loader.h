@@ -16,6 +16,9 @@ struct SceneOverrides {
   std::optional<double> fovYDegrees;
   std::optional<std::vector<std::string>> attributes;  // narrow the attributes written
   std::string camera;  // a glTF file's camera, by index in its `cameras` or by name; empty: the first placed
+  // Files whose meshes make more triangles are refused while they load, before the triangles
+  // are allocated (built-in scenes bound their own sizes).
+  std::size_t maxTriangles = kNoTriangleLimit;
 };
 
 // Files are recognised by their extension (.obj, .gltf, .glb, .json, any case); anything else

@@ -181,6 +181,7 @@ struct Walker {
   }
 
   std::vector<int> parents;  // each node's parent (-1: a root), made on first use
+  TriangleBudget budget;  // placing more is refused (checkTriangleBudget)
 
   // A node's world transform, from its ancestors (a skin's joints need not lie on the walk).
   glm::dmat4 worldOf(int index) {
@@ -441,6 +442,9 @@ struct Walker {
       }
       // A skinned mesh is placed by its joints alone (and is not instanced).
       const std::vector<glm::dmat4> placements = skinned ? std::vector<glm::dmat4>{glm::dmat4(1.0)} : instancesOf(node, world, triangles, where);
+      // instancesOf keeps placements x triangles within 2^26: the product does not overflow.
+      checkTriangleBudget(budget.have + content.mesh.triangleCount(), placements.size() * triangles, budget.limit, where,
+                          "placing meshes[" + std::to_string(node.mesh) + "]");
       for (const glm::dmat4& m : placements) {
         for (const Mesh& part : parts) appendMesh(content.mesh, part, m);
       }
@@ -452,7 +456,7 @@ struct Walker {
 
 }  // namespace
 
-GltfContent loadGltf(const std::string& path) {
+GltfContent loadGltf(const std::string& path, TriangleBudget budget) {
   const PlaneVector<char> file = readLargeInputFile(path);
   const std::string_view bytes(file.data(), file.size());
   const bool binary = bytes.substr(0, 4) == "glTF";
@@ -486,7 +490,7 @@ GltfContent loadGltf(const std::string& path) {
   if (!unread.empty()) throw badInput(path + ": /extensionsRequired", "needs extensions rastercheck does not read: " + unread);
   gltf::decodeMeshopt(model, meshopt, path);
 
-  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}, {}, {}};
+  Walker walker{model, path, gltf::AccessorReader(model, path), {}, {}, {}, {}, budget};
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;

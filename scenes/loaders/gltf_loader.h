@@ -35,7 +35,9 @@ struct GltfContent {
 // file's own folder are read. A camera is checked only when it is used: an orthographic one,
 // or one whose node collapses its view, is listed with its refusal.
 // Throws ioError / badInput naming the file and the place (JSON path or byte offset).
-GltfContent loadGltf(const std::string& path);
+// A file whose default scene takes the scene past budget.limit triangles is refused at the node
+// where it does, before they are allocated.
+GltfContent loadGltf(const std::string& path, TriangleBudget budget = {});
 
 // "cameras[1] \"side\"": the camera's place and name, as messages show them.
 std::string gltfCameraName(const GltfCamera& camera);

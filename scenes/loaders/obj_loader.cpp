@@ -80,9 +80,11 @@ const char* faceCornerProblem(std::string_view corner) {
 }
 
 // Line numbers of the face statements ("f ..."), to name the place of a bad face. Throws
-// badInput for a face of more than kMaxCorners corners, or a corner faceCornerProblem refuses.
-std::vector<std::size_t> faceLines(std::string_view text, const std::string& path) {
+// badInput for a face of more than kMaxCorners corners, a corner faceCornerProblem refuses, or
+// the face where the triangles (n - 2 for a face of n corners) take the scene past the budget.
+std::vector<std::size_t> faceLines(std::string_view text, const std::string& path, TriangleBudget budget) {
   std::vector<std::size_t> lines;
+  std::size_t triangles = budget.have;
   const auto blank = [](char c) { return c == ' ' || c == '\t'; };
   forEachLine(text, [&](std::size_t line, std::string_view statement) {
     std::size_t j = 0;
@@ -106,6 +108,9 @@ std::vector<std::size_t> faceLines(std::string_view text, const std::string& pat
       throw badInput(path + ":" + std::to_string(line), "face has " + std::to_string(corners) + " corners; at most " +
                                                             std::to_string(kMaxCorners) + " are read (split it)");
     }
+    const std::size_t adding = corners >= 3 ? corners - 2 : 0;
+    checkTriangleBudget(triangles, adding, budget.limit, path + ":" + std::to_string(line), "this face");
+    triangles += adding;
   });
   return lines;
 }
@@ -160,11 +165,11 @@ struct CornerHash {
 
 }  // namespace
 
-Mesh loadObj(const std::string& path) {
+Mesh loadObj(const std::string& path, TriangleBudget budget) {
   const PlaneVector<char> bytes = readLargeInputFile(path);
   const std::string_view text(bytes.data(), bytes.size());
   checkNumbers(text, path);
-  const std::vector<std::size_t> lines = faceLines(text, path);
+  const std::vector<std::size_t> lines = faceLines(text, path, budget);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;

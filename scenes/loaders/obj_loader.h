@@ -12,6 +12,7 @@ namespace rc {
 // attributes) become separate vertices with identical positions, so both renderers see the
 // same triangles and values. Materials are ignored and no other file is opened.
 // Throws ioError / badInput naming the file and, where it can, the line.
-Mesh loadObj(const std::string& path);
+// A file whose faces take the scene past budget.limit triangles is refused before it is parsed.
+Mesh loadObj(const std::string& path, TriangleBudget budget = {});
 
 }  // namespace rc

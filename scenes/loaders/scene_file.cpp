@@ -130,7 +130,7 @@ Json parseStrict(const std::string& text, const std::string& path) {
 
 }  // namespace
 
-Scene loadSceneFile(const std::string& path) {
+Scene loadSceneFile(const std::string& path, std::size_t maxTriangles) {
   const Json doc = parseStrict(readInputFile(path), path);
   const Reader r{path};
   r.onlyKeys(doc, "", {"meshes", "camera", "image", "attributes"});
@@ -147,9 +147,9 @@ Scene loadSceneFile(const std::string& path) {
     const glm::dmat4 transform = entry.contains("transform") ? r.transform(entry["transform"], at + "/transform") : glm::dmat4(1.0);
     const std::string extension = lowerExtension(file);
     if (extension == ".obj") {
-      appendMesh(mesh, loadObj(file), transform);
+      appendMesh(mesh, loadObj(file, {maxTriangles, mesh.triangleCount()}), transform);
     } else if (extension == ".gltf" || extension == ".glb") {
-      appendMesh(mesh, loadGltf(file).mesh, transform);
+      appendMesh(mesh, loadGltf(file, {maxTriangles, mesh.triangleCount()}).mesh, transform);
     } else {
       r.fail(at + "/path", "must name an .obj, .gltf or .glb file");
     }

@@ -11,6 +11,6 @@ namespace rc {
 
 // Throws badInput naming the file and the JSON pointer (or line and column for syntax errors)
 // of the first problem; ioError when a mesh file cannot be read.
-Scene loadSceneFile(const std::string& path);
+Scene loadSceneFile(const std::string& path, std::size_t maxTriangles = kNoTriangleLimit);
 
 }  // namespace rc

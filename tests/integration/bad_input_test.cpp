@@ -107,6 +107,11 @@ TEST(BadInput, ObjFiles) {
       {"nofaces.obj", v, "nofaces.obj"},
   };
   for (const auto& c : cases) expectRefusedCheck(dir, dir.write(c.name, c.text), 3, c.fragment);
+  // --max-triangles is applied while the file loads (it was applied to the loaded scene).
+  const Outcome limit = rastercheck("scenes " + dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n") +
+                                    " --max-triangles 1");
+  EXPECT_EQ(limit.exitCode, 3) << limit.output;
+  EXPECT_NE(limit.output.find("quad.obj:5: this face takes the scene past 1 triangles"), std::string::npos) << limit.output;
   // CR-only line endings (classic Mac OS) are line endings, as tinyobjloader reads them: the
   // file loads, and a bad value after a lone CR is found on the line the parser reads it from.
   EXPECT_EQ(rastercheck("check -q " + dir.write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r")).exitCode, 0);

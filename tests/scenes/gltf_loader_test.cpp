@@ -490,6 +490,25 @@ TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
   EXPECT_NE(odd.mesh.findAttribute("ok"), nullptr);
 }
 
+// The triangles are counted as the hierarchy places them, before they are allocated: a file of
+// a few kilobytes whose nodes place one mesh a hundred thousand times is refused at the node
+// that passes the limit (it ran out of memory before).
+TEST(GltfLoader, TheTriangleLimitIsCheckedAsNodesPlaceMeshes) {
+  TempDir dir;
+  std::string nodes = R"("nodes": [{"children": [1, 2, 3, 4, 5]})";
+  for (int i = 0; i < 5; ++i) nodes += R"(, {"mesh": 0, "translation": [0, 0, )" + std::to_string(i) + "]}";
+  nodes += "]";
+  const std::string path = dir.write("five.gltf", gltfText(dataUri(triangleBytes()), "", 3, nodes));
+  EXPECT_EQ(loadGltf(path).mesh.triangleCount(), 5u);
+  EXPECT_EQ(loadGltf(path, {5}).mesh.triangleCount(), 5u);
+  testing::expectError([&] { loadGltf(path, {4}); }, ExitCode::kBadInput,
+                       {"five.gltf: nodes[5]: placing meshes[0] takes the scene past 4 triangles"}, "limit 4");
+  testing::expectError([&] { loadGltf(path, {6, 2}); }, ExitCode::kBadInput, {"nodes[5]"}, "2 triangles before the file's");
+  SceneOverrides o;
+  o.maxTriangles = 4;
+  testing::expectError([&] { loadScene(path, o); }, ExitCode::kBadInput, {"nodes[5]"}, "through loadScene");
+}
+
 TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
   TempDir dir;
   GltfBuilder b;
@@ -507,6 +526,9 @@ TEST(GltfLoader, GpuInstancesEachDrawTheMeshAtTheirTransform) {
   const std::string required = R"(, "extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"])";
   const Mesh mesh = loadGltf(dir.write("instances.gltf", b.text(R"("attributes": {"POSITION": 0})", "", required, instancing))).mesh;
   ASSERT_EQ(mesh.triangleCount(), 2u);
+  // Each instance counts against the limit.
+  testing::expectError([&] { loadGltf(dir.file("instances.gltf"), {1}); }, ExitCode::kBadInput,
+                       {"instances.gltf: nodes[0]: placing meshes[0] takes the scene past 1 triangles"}, "instances, limit 1");
   ASSERT_EQ(mesh.positions.size(), 6u);
   const glm::vec3 expected[6] = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {10, 0, 5}, {10, 2, 5}, {8, 0, 5}};
   for (int i = 0; i < 6; ++i) {

@@ -198,6 +198,20 @@ TEST(ObjLoader, LinesEndAtLfCrLfOrALoneCr) {
                        {"ring.obj:259", "256 corners"}, "256 corners after a lone CR");
 }
 
+// The triangles a file's faces make (n - 2 for n corners) are counted before it is parsed: a
+// few bytes a face would otherwise ask tinyobjloader for some 45 bytes a face, unbounded.
+TEST(ObjLoader, TheTriangleLimitIsCheckedBeforeTheFileIsParsed) {
+  TempDir dir;
+  const std::string path =
+      dir.write("limit.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3\n\nf 1 2 3 4 5\n");
+  EXPECT_EQ(loadObj(path).triangleCount(), 4u);
+  EXPECT_EQ(loadObj(path, {4}).triangleCount(), 4u);
+  EXPECT_EQ(loadObj(path, {6, 2}).triangleCount(), 4u);
+  testing::expectError([&] { loadObj(path, {3}); }, ExitCode::kBadInput,
+                       {"limit.obj:8: this face takes the scene past 3 triangles"}, "limit 3");
+  testing::expectError([&] { loadObj(path, {6, 3}); }, ExitCode::kBadInput, {"limit.obj:8"}, "3 triangles before the file's");
+}
+
 // Spot's UVs, against an independent reading of the file: every triangle corner carries the
 // vt its face statement names, so UVs stay right on both sides of every texture seam.
 TEST(ObjLoader, SpotCornersCarryExactlyTheirFaceStatementsUv) {

@@ -83,6 +83,19 @@ TEST(SceneFile, MistakesAreRefusedWithTheirJsonPointer) {
   testing::expectError([&] { loadSceneFile(missing); }, ExitCode::kIo, {"gone.obj"}, "missing mesh");
 }
 
+// The limit counts every mesh of the file: each is loaded with the triangles before it.
+TEST(SceneFile, TheTriangleLimitCountsTheMeshesBeforeEachOne) {
+  TempDir dir;
+  dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string path = dir.write("three.json", R"({"meshes": [{"path": "tri.obj"}, {"path": "tri.obj"}, {"path": "tri.obj"}]})");
+  EXPECT_EQ(loadSceneFile(path, 3).mesh.triangleCount(), 3u);
+  testing::expectError([&] { loadSceneFile(path, 2); }, ExitCode::kBadInput,
+                       {"tri.obj:4: this face takes the scene past 2 triangles"}, "limit 2");
+  SceneOverrides o;
+  o.maxTriangles = 2;
+  testing::expectError([&] { loadScene(path, o); }, ExitCode::kBadInput, {"past 2 triangles"}, "through loadScene");
+}
+
 TEST(SceneLoader, FilesByExtensionAndOverridesApply) {
   TempDir dir;
   const std::string obj = dir.write("Tri.OBJ", kTriangleUvNormal);
