@@ -3,9 +3,11 @@
 
 #include <png.h>
 
+#include <cerrno>
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstring>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -46,6 +48,22 @@ std::uint8_t encodeSrgb(float linear) {
   return std::uint8_t(std::lround(v * 255.0));
 }
 
+// libpng's errors, kept for the message instead of printed ("libpng error: Write Error"): its
+// message, and errno as the failing fwrite left it (ENOSPC on a full disk).
+struct PngFailure {
+  int savedErrno = 0;
+  char message[128] = {};
+};
+
+[[noreturn]] void onPngError(png_structp png, png_const_charp message) {
+  auto* failure = static_cast<PngFailure*>(png_get_error_ptr(png));
+  failure->savedErrno = errno;
+  std::snprintf(failure->message, sizeof failure->message, "%s", message);
+  png_longjmp(png, 1);
+}
+
+void onPngWarning(png_structp, png_const_charp) {}
+
 }  // namespace
 
 Rgb8Image displayImage(const Framebuffer& fb) {
@@ -63,8 +81,10 @@ Rgb8Image displayImage(const Framebuffer& fb) {
 void writePng(const Rgb8Image& image, const std::string& path) {
   AtomicOutput out(path);
   FILE* file = std::fopen(out.tempPath().c_str(), "wb");
-  if (!file) throw ioError(path, "cannot write PNG");
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!file) throw ioError(path, std::string("cannot write PNG: ") + std::strerror(errno));
+  PngFailure failure;
+  errno = 0;  // so that an errno kept on failure is the write's
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, onPngError, onPngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   volatile bool ok = png && info;  // volatile: survives libpng's longjmp
   if (ok && setjmp(png_jmpbuf(png)) == 0) {
@@ -86,7 +106,13 @@ void writePng(const Rgb8Image& image, const std::string& path) {
   }
   png_destroy_write_struct(&png, &info);
   const bool closed = std::fclose(file) == 0;
-  if (!ok || !closed) throw ioError(path, "cannot write PNG (disk full?)");
+  if (!closed && !failure.savedErrno) failure.savedErrno = errno;
+  if (!ok || !closed) {
+    const std::string cause = failure.savedErrno ? std::strerror(failure.savedErrno)
+                              : failure.message[0] ? failure.message
+                                                   : "libpng could not start";
+    throw ioError(path, "cannot write PNG: " + cause);
+  }
   out.commit();
 }
 
