@@ -79,69 +79,61 @@ const char* faceCornerProblem(std::string_view corner) {
   return index(rest.substr(second + 1));
 }
 
-// Line numbers of the face statements ("f ..."), to name the place of a bad face. Throws
-// badInput for a face of more than kMaxCorners corners, a corner faceCornerProblem refuses, or
-// the face where the triangles (n - 2 for a face of n corners) take the scene past the budget.
-std::vector<std::size_t> faceLines(std::string_view text, const std::string& path, TriangleBudget budget) {
-  std::vector<std::size_t> lines;
-  std::size_t triangles = budget.have;
+// Checks, in one pass over the lines, what tinyobjloader would misread without a word, and
+// returns the line numbers of the face statements ("f ..."), to name the place of a bad face:
+// - every number of a v, vt or vn statement must parse completely, with std::from_chars (the
+//   locale never matters), and be finite as a float (the parser reads "nan" or "abc" as 0);
+// - every corner of a face must be one faceCornerProblem accepts, and a face may have at most
+//   kMaxCorners corners;
+// - the triangles (n - 2 for a face of n corners) must not take the scene past the budget.
+std::vector<std::size_t> checkStatements(std::string_view text, const std::string& path, TriangleBudget budget) {
   const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  std::vector<std::size_t> faceLines;
+  std::size_t triangles = budget.have;
   forEachLine(text, [&](std::size_t line, std::string_view statement) {
-    std::size_t j = 0;
-    while (j < statement.size() && blank(statement[j])) ++j;
-    if (j + 1 >= statement.size() || statement[j] != 'f' || !blank(statement[j + 1])) return;
-    lines.push_back(line);
+    // The keyword, and the tokens after it, split at spaces and tabs as the parser splits them.
+    const std::size_t size = statement.size();
+    std::size_t start = 0;
+    while (start < size && blank(statement[start])) ++start;
+    std::size_t keywordEnd = start;
+    while (keywordEnd < size && !blank(statement[keywordEnd])) ++keywordEnd;
+    if (keywordEnd == size) return;  // blank, or a keyword alone: nothing the parser reads
+    const std::string_view keyword = statement.substr(start, keywordEnd - start);
+    const bool face = keyword == "f";
+    if (!face && keyword != "v" && keyword != "vt" && keyword != "vn") return;
+    if (face) faceLines.push_back(line);
+    const auto where = [&] { return path + ":" + std::to_string(line); };
     std::size_t corners = 0;
-    for (std::size_t k = j + 1; k < statement.size();) {
-      while (k < statement.size() && blank(statement[k])) ++k;
-      if (k == statement.size()) break;
+    for (std::size_t k = keywordEnd; k < size;) {
+      while (k < size && blank(statement[k])) ++k;
+      if (k == size) break;
       std::size_t end = k;
-      while (end < statement.size() && !blank(statement[end])) ++end;
-      const std::string_view corner = statement.substr(k, end - k);
-      if (const char* problem = faceCornerProblem(corner)) {
-        throw badInput(path + ":" + std::to_string(line), "'" + std::string(corner.substr(0, 40)) + "' " + problem);
-      }
-      ++corners;
-      k = end;
-    }
-    if (corners > kMaxCorners) {
-      throw badInput(path + ":" + std::to_string(line), "face has " + std::to_string(corners) + " corners; at most " +
-                                                            std::to_string(kMaxCorners) + " are read (split it)");
-    }
-    const std::size_t adding = corners >= 3 ? corners - 2 : 0;
-    checkTriangleBudget(triangles, adding, budget.limit, path + ":" + std::to_string(line), "this face");
-    triangles += adding;
-  });
-  return lines;
-}
-
-// tinyobjloader reads a token it cannot parse ("nan", "abc") as 0 without a word, so every
-// number of a v, vt or vn statement is checked here first: it must parse completely, with
-// std::from_chars (the locale never matters), and be finite as a float.
-void checkNumbers(std::string_view text, const std::string& path) {
-  forEachLine(text, [&](std::size_t line, std::string_view statement) {
-    std::size_t i = statement.find_first_not_of(" \t");
-    if (i != std::string_view::npos && statement[i] == 'v' && i + 1 < statement.size() &&
-        (statement[i + 1] == ' ' || statement[i + 1] == '\t' ||
-         ((statement[i + 1] == 't' || statement[i + 1] == 'n') && i + 2 < statement.size() &&
-          (statement[i + 2] == ' ' || statement[i + 2] == '\t')))) {
-      i = statement.find_first_of(" \t", i);
-      while (true) {
-        i = statement.find_first_not_of(" \t", i);
-        if (i == std::string_view::npos) break;
-        std::size_t j = statement.find_first_of(" \t", i);
-        if (j == std::string_view::npos) j = statement.size();
-        const std::string_view token = statement.substr(i, j - i);
+      while (end < size && !blank(statement[end])) ++end;
+      const std::string_view token = statement.substr(k, end - k);
+      if (face) {
+        if (const char* problem = faceCornerProblem(token)) {
+          throw badInput(where(), "'" + std::string(token.substr(0, 40)) + "' " + problem);
+        }
+        ++corners;
+      } else {
         float value = 0.0f;
         const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
         if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value)) {
-          throw badInput(path + ":" + std::to_string(line),
-                         "'" + std::string(token.substr(0, 40)) + "' is not a finite float");
+          throw badInput(where(), "'" + std::string(token.substr(0, 40)) + "' is not a finite float");
         }
-        i = j;
       }
+      k = end;
     }
+    if (!face) return;
+    if (corners > kMaxCorners) {
+      throw badInput(where(), "face has " + std::to_string(corners) + " corners; at most " + std::to_string(kMaxCorners) +
+                                  " are read (split it)");
+    }
+    const std::size_t adding = corners >= 3 ? corners - 2 : 0;
+    checkTriangleBudget(triangles, adding, budget.limit, where(), "this face");
+    triangles += adding;
   });
+  return faceLines;
 }
 
 // The file's text as a stream, without the copy into a stringbuf that tinyobjloader's
@@ -168,8 +160,7 @@ struct CornerHash {
 Mesh loadObj(const std::string& path, TriangleBudget budget) {
   const PlaneVector<char> bytes = readLargeInputFile(path);
   const std::string_view text(bytes.data(), bytes.size());
-  checkNumbers(text, path);
-  const std::vector<std::size_t> lines = faceLines(text, path, budget);
+  const std::vector<std::size_t> lines = checkStatements(text, path, budget);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
