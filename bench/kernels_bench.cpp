@@ -12,6 +12,7 @@
 
 #include "rasterizer/rasterizer.h"
 #include "rasterizer/setup.h"
+#include "rasterizer/tile_coverage.h"
 #include "rasterizer/tile_kernel.h"
 #include "scenes/registry.h"
 

@@ -3,7 +3,7 @@
 // vertices, the true (3-D) barycentrics are b_i = (l_i / w_i) / sum_j (l_j / w_j), and the
 // depth (= w) there is sum_j l_j / sum_j (l_j / w_j). Affine mode uses l_i as they are.
 //
-// Value is a scalar or a vector of lanes (tile_kernel.h evaluates eight pixels at once through
+// Value is a scalar or a vector of lanes (the tile kernels evaluate eight pixels at once through
 // these very functions); Scalar is the per-vertex type: Value's element type, or Value itself
 // when each lane has its own triangle (the gathered resolve). Always inlined: the kernels' vector
 // values never cross a call between code compiled for different instruction sets.

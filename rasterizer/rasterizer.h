@@ -61,7 +61,7 @@ struct RasterOptions {
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
   KernelIsa isa = KernelIsa::kAuto;
   Culling culling = Culling::kAuto;  // changes no pixel a front face wins (docs/rasterizer.md)
-  // Resolve a row chunk of several winners in one pass over its lanes (float; tile_kernel.h)
+  // Resolve a row chunk of several winners in one pass over its lanes (float; tile_gather.h)
   // rather than winner by winner. The same bits either way: off only to test that.
   bool gatheredResolve = true;
   // When every vertex lies inside the view volume, set up the triangles four at a time in

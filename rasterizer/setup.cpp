@@ -47,7 +47,7 @@ bool setupPlanes(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const Set
 // the box holds every pixel whose centre may lie in the unsnapped triangle (rounding of
 // min - 0.5 and max - 0.5 only widens it), and the edges' fill-rule flags follow the exact
 // signs of the vertex differences. The snapped vertices stay 0; the tiles read the raster
-// positions instead (tile_kernel.h's coverRowsUnsnapped).
+// positions instead (tile_coverage.h's coverRowsUnsnapped).
 template <typename Real>
 bool setupUnsnapped(const glm::dvec2 raster[3], const SetupContext& ctx, CoverageSetup<Real>& c) {
   const int area = orientation(raster[0].x, raster[0].y, raster[1].x, raster[1].y, raster[2].x, raster[2].y);

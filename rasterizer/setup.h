@@ -117,7 +117,7 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
                    bool clipped, const SetupContext& ctx, CoverageSetup<Real>& c, ShadeSetup<Real>& s);
 
 // The per-pixel formulas, for pixel offsets (dx, dy) from the anchor (small integers, exact in
-// float), are in tile_kernel.h, evaluated eight pixels at a time:
+// float), are in tile_resolve.h and tile_gather.h, evaluated eight pixels at a time:
 //   screen barycentrics  l_i = l0_i + lx_i dx + ly_i dy
 //   depth-test key       key0 + keyX dx + keyY dy (larger is nearer)
 //   edge distance        min over source edges of |l_i| edgeHeight_i

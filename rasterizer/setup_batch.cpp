@@ -13,7 +13,7 @@
 #include "rasterizer/orientation.h"
 #include "rasterizer/setup_formulas.h"
 
-// Vectors never cross a call boundary (tile_kernel.h).
+// Vectors never cross a call boundary (kernel_lanes.h).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace rc::batch {

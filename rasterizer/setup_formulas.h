@@ -15,7 +15,7 @@
 #include "core/lanes.h"
 #include "rasterizer/setup.h"
 
-// Vector values only pass between always-inlined functions (tile_kernel.h).
+// Vector values only pass between always-inlined functions (kernel_lanes.h).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 

@@ -13,6 +13,7 @@
 
 #include "rasterizer/orientation.h"
 #include "rasterizer/setup.h"
+#include "rasterizer/tile_coverage.h"
 #include "rasterizer/tile_kernel.h"
 #include "tests/oracle/exact.h"
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rasterizer/coverage.h"
+#include "rasterizer/tile_coverage.h"
 #include "rasterizer/tile_kernel.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"  // vector types in the kernels inline helpers

@@ -238,10 +238,10 @@ TEST(Rasterizer, WriteOutPassWritesEveryValueOfEveryChannel) {
 }
 
 // A row chunk of several winners is resolved either in one pass over its lanes, each lane
-// reading its winner's packed record, or winner by winner (tile_kernel.h); each lane must run
-// the same operations either way. Small triangles give most chunks several winners; nearplane
-// has clipped winners, attributes several attribute sets, and every instruction set has the
-// gathered path.
+// reading its winner's packed record (tile_gather.h), or winner by winner (tile_resolve.h);
+// each lane must run the same operations either way. Small triangles give most chunks several
+// winners; nearplane has clipped winners, attributes several attribute sets, and every
+// instruction set has the gathered path.
 TEST(Rasterizer, GatheredResolveGivesTheSameBitsAsWinnerByWinner) {
   for (const char* spec : {"blob:tris=200000", "blob:tris=20000", "attributes", "nearplane", "subpixel", "slivers"}) {
     const Scene scene = makeBuiltinScene(spec);
