@@ -103,12 +103,9 @@ void selectAttributes(Mesh& mesh, const std::vector<std::string>& names, const s
   });
 }
 
-void checkTriangleBudget(std::size_t have, std::size_t adding, std::size_t limit, const std::string& where,
-                         const std::string& what) {
-  if (have > limit || adding > limit - have) {
-    throw badInput(where, what + " takes the scene past " + std::to_string(limit) +
-                              " triangles, the most it may have (--max-triangles)");
-  }
+void refuseTriangles(std::size_t limit, const std::string& where, const std::string& what) {
+  throw badInput(where, what + " takes the scene past " + std::to_string(limit) +
+                            " triangles, the most it may have (--max-triangles)");
 }
 
 void validateMesh(const Mesh& mesh, const std::string& where) {

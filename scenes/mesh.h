@@ -80,12 +80,17 @@ void validateMesh(const Mesh& mesh, const std::string& where);
 // No limit on a scene's triangles (the loaders' default).
 inline constexpr std::size_t kNoTriangleLimit = ~std::size_t(0);
 
-// Throws badInput naming `where` and `what` adds (a face, a node's mesh) when a scene of
-// `have` triangles would have more than `limit` with `adding` more. The loaders check before they allocate, so that a small file (one mesh
-// placed by a hundred thousand nodes, a short face statement repeated) cannot ask for unbounded
-// memory before the caller's limit on the loaded scene is ever consulted.
-void checkTriangleBudget(std::size_t have, std::size_t adding, std::size_t limit, const std::string& where,
-                         const std::string& what);
+// Throws badInput naming where() and what() adds (a face, a node's mesh) when a scene of
+// `have` triangles would have more than `limit` with `adding` more. The loaders check before
+// they allocate, so that a small file (one mesh placed by a hundred thousand nodes, a short
+// face statement repeated) cannot ask for unbounded memory before the caller's limit on the
+// loaded scene is ever consulted. where and what return strings and are called only for the
+// message: an OBJ checks every face, and building its place each time cost a string a face.
+[[noreturn]] void refuseTriangles(std::size_t limit, const std::string& where, const std::string& what);
+template <typename Where, typename What>
+void checkTriangleBudget(std::size_t have, std::size_t adding, std::size_t limit, const Where& where, const What& what) {
+  if (have > limit || adding > limit - have) refuseTriangles(limit, where(), what());
+}
 
 // What a loader may add to a scene: the scene's limit, and the triangles it has before the file's.
 struct TriangleBudget {

@@ -443,8 +443,8 @@ struct Walker {
       // A skinned mesh is placed by its joints alone (and is not instanced).
       const std::vector<glm::dmat4> placements = skinned ? std::vector<glm::dmat4>{glm::dmat4(1.0)} : instancesOf(node, world, triangles, where);
       // instancesOf keeps placements x triangles within 2^26: the product does not overflow.
-      checkTriangleBudget(budget.have + content.mesh.triangleCount(), placements.size() * triangles, budget.limit, where,
-                          "placing meshes[" + std::to_string(node.mesh) + "]");
+      checkTriangleBudget(budget.have + content.mesh.triangleCount(), placements.size() * triangles, budget.limit,
+                          [&] { return where; }, [&] { return "placing meshes[" + std::to_string(node.mesh) + "]"; });
       for (const glm::dmat4& m : placements) {
         for (const Mesh& part : parts) appendMesh(content.mesh, part, m);
       }

@@ -4,12 +4,12 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <istream>
 #include <sstream>
 #include <streambuf>
-#include <algorithm>
-#include <cmath>
 #include <string_view>
 #include <unordered_map>
 
@@ -130,7 +130,7 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
                                   " are read (split it)");
     }
     const std::size_t adding = corners >= 3 ? corners - 2 : 0;
-    checkTriangleBudget(triangles, adding, budget.limit, where(), "this face");
+    checkTriangleBudget(triangles, adding, budget.limit, where, [] { return std::string("this face"); });
     triangles += adding;
   });
   return faceLines;
