@@ -66,6 +66,23 @@ std::string settingsLine(const RenderSettings& s) {
          std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck " RASTERCHECK_VERSION;
 }
 
+// Every attribute --max-attr names must be one the scene's renders carry: a name that gates
+// nothing is a typo, refused before any scene is rendered.
+void requireAttributeLimitsApply(const Scene& scene, const std::string& spec, const Thresholds& thresholds,
+                                 const RenderSettings& settings) {
+  for (const auto& [name, limit] : thresholds.attributeByName) {
+    const auto& chosen = settings.attributes;
+    if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), name) == chosen.end()) {
+      throw usageError(spec + ": --max-attr names '" + name + "', which --attributes leaves out");
+    }
+    if (scene.mesh.findAttribute(name)) continue;
+    std::string carried;
+    for (const Attribute& a : scene.mesh.attributes) carried += (carried.empty() ? "" : ", ") + a.name;
+    throw usageError(spec + ": --max-attr names '" + name + "', which the scene does not carry (it has: " +
+                     (carried.empty() ? "none" : carried) + ")");
+  }
+}
+
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
@@ -87,6 +104,7 @@ int runCheck(CheckArgs& args) {
   for (const std::string& spec : args.scenes) {
     progress.step("loading " + spec);
     scenes.push_back(loadScene(spec, args.settings));
+    requireAttributeLimitsApply(scenes.back(), spec, args.thresholds, args.settings);
   }
   // The folders are made before any scene is rendered, so one that cannot be fails first.
   WrittenOutputs outputs;

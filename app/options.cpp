@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <string_view>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -36,6 +38,47 @@ const CLI::Validator kFiniteNonNegative(
       return {};
     },
     "FINITE>=0");
+
+// A finite number >= 0 in all of `text`, or nothing.
+std::optional<double> finiteNonNegative(std::string_view text) {
+  double value = 0.0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < 0.0) return {};
+  return value;
+}
+
+// One item of --max-attr: LIMIT (every attribute) or NAME=LIMIT (attribute NAME).
+const CLI::Validator kAttributeLimit(
+    [](std::string& text) -> std::string {
+      const std::size_t equals = text.find('=');
+      const std::string_view limit = equals == std::string::npos ? std::string_view(text)
+                                                                 : std::string_view(text).substr(equals + 1);
+      if (equals == 0) return "'" + text + "' names no attribute before '='";
+      if (!finiteNonNegative(limit)) {
+        return "must be LIMIT or NAME=LIMIT with LIMIT a finite number >= 0, got '" + text + "'";
+      }
+      return {};
+    },
+    "");
+
+// --max-attr's items, each already checked: a bare limit sets every attribute's, NAME=LIMIT one
+// attribute's. Naming an attribute twice, or giving two bare limits, is refused: which was meant?
+void setAttributeLimits(const std::vector<std::string>& items, Thresholds& t) {
+  bool bare = false;
+  for (const std::string& item : items) {
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos) {
+      if (bare) throw CLI::ValidationError("--max-attr", "two limits for every attribute; give one");
+      bare = true;
+      t.attribute = *finiteNonNegative(item);
+      continue;
+    }
+    const std::string name = item.substr(0, equals);
+    if (!t.attributeByName.emplace(name, *finiteNonNegative(std::string_view(item).substr(equals + 1))).second) {
+      throw CLI::ValidationError("--max-attr", "attribute " + name + " given two limits; give one");
+    }
+  }
+}
 
 }  // namespace
 
@@ -120,8 +163,14 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-depth", t.depth, "gate without bound channels: max depth error (relative)")
       ->check(kFiniteNonNegative)->capture_default_str();
-  command->add_option("--max-attr", t.attribute, "gate without bound channels: max attribute error (fraction of its range)")
-      ->check(kFiniteNonNegative)->capture_default_str();
+  command
+      ->add_option_function<std::vector<std::string>>(
+          "--max-attr", [&t](const std::vector<std::string>& items) { setAttributeLimits(items, t); },
+          "gate without bound channels: max attribute error, as a fraction of its range; LIMIT for every attribute, "
+          "NAME=LIMIT for one (e.g. 1e-4,color=4e-3); default 0.0001")
+      ->delimiter(',')
+      ->check(kAttributeLimit)
+      ->type_name("LIMIT|NAME=LIMIT");
   command->add_option("--max-disagreement", t.disagreement,
                       "gate without edge.dist channels: max fraction of covered pixels where the triangle differs")
       ->check(kFiniteNonNegative)->capture_default_str();

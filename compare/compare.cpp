@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <string_view>
 
 #include "compare/colormap.h"
 #include "core/channels.h"
@@ -48,6 +49,18 @@ std::string formatRatio(double value) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", value);
   return buf;
+}
+
+// "VALUE exceeds LIMIT" (or "VALUE, limit LIMIT") in as few significant digits as tell the two
+// apart, at least 3: fixed decimals printed 1.9e-7 against 1e-9 as 0.000000 against 0.000000.
+std::string overLimit(double value, double limit, const char* joint) {
+  char a[40], b[40];
+  for (int digits = 3; digits <= 17; ++digits) {
+    std::snprintf(a, sizeof a, "%.*g", digits, value);
+    std::snprintf(b, sizeof b, "%.*g", digits, limit);
+    if (std::string_view(a) != b) break;
+  }
+  return std::string(a) + joint + b;
 }
 
 const Channel& require(const Framebuffer& fb, const std::string& path, const std::string& name,
@@ -93,7 +106,8 @@ struct Family {
 
 std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& testPath,
                                     const Framebuffer& ref, const std::string& refPath,
-                                    const std::vector<std::string>& selection, std::vector<std::string>& leftOut) {
+                                    const Thresholds& thresholds, std::vector<std::string>& leftOut) {
+  const std::vector<std::string>& selection = thresholds.attributes;
   std::vector<Family> families;
   Family bary{"bary", Family::kBary, {}, {}};
   for (const char* name : channels::kBary) {
@@ -115,20 +129,29 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
       if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
     }
   }
+  // An option naming an attribute family neither image carries is a usage error (a typo).
+  const auto requireCarried = [&](const std::string& option, const std::string& name) {
+    if (attributes.count(prefix + name) != 0) return;
+    std::string carried;
+    for (const auto& entry : attributes) carried += (carried.empty() ? "" : ", ") + entry.first.substr(prefix.size());
+    throw usageError(option + " " + name + ": neither " + testPath + " nor " + refPath + " carries it" +
+                     (carried.empty() ? std::string(" (they carry no attributes)") : " (they carry " + carried + ")"));
+  };
+  for (const auto& [name, limit] : thresholds.attributeByName) requireCarried("--max-attr", name);
   if (!selection.empty()) {
     std::map<std::string, std::vector<std::string>> chosen;
     for (const std::string& name : selection) {
-      const auto it = attributes.find(prefix + name);
-      if (it == attributes.end()) {
-        std::string carried;
-        for (const auto& entry : attributes) carried += (carried.empty() ? "" : ", ") + entry.first.substr(prefix.size());
-        throw usageError("--attributes " + name + ": neither " + testPath + " nor " + refPath + " carries it" +
-                         (carried.empty() ? std::string(" (they carry no attributes)") : " (they carry " + carried + ")"));
-      }
-      chosen.insert(*it);
+      requireCarried("--attributes", name);
+      chosen.insert(*attributes.find(prefix + name));
     }
     for (const auto& entry : attributes) {
       if (chosen.count(entry.first) == 0) leftOut.push_back(entry.first);
+    }
+    // A limit for a family --attributes leaves out would gate nothing: say so.
+    for (const auto& [name, limit] : thresholds.attributeByName) {
+      if (chosen.count(prefix + name) == 0) {
+        throw usageError("--max-attr " + name + ": --attributes leaves it out, so it is not compared");
+      }
     }
     attributes = std::move(chosen);
   }
@@ -186,7 +209,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   CompareReport report;
-  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds.attributes, report.leftOut);
+  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds, report.leftOut);
   report.testPath = testPath;
   report.referencePath = refPath;
   report.width = test.width();
@@ -307,7 +330,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     fr.threshold = bounded                     ? 1.0
                    : f.kind == Family::kBary   ? thresholds.bary
                    : f.kind == Family::kDepth  ? thresholds.depth
-                                               : thresholds.attribute;
+                                               : thresholds.attributeLimit(f.name.substr(std::string_view(channels::kAttributePrefix).size()));
     fr.gated = bounded ? fr.ratio.max : fr.stats.max;
     if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
   });
@@ -355,9 +378,8 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
       report.reasons.push_back(f.name + ": error reaches " + formatRatio(f.gated) + "x its bound at " +
                                formatPixel(f.ratio.worst));
     } else if (!f.bounded && !(f.gated <= f.threshold)) {
-      report.reasons.push_back(f.name + ": max error " + std::to_string(f.gated) +
-                               (f.range > 0.0 ? " of range" : "") + " exceeds " +
-                               std::to_string(f.threshold));
+      report.reasons.push_back(f.name + ": max error " +
+                               overLimit(f.gated, f.threshold, f.range > 0.0 ? " of range exceeds " : " exceeds "));
     }
   }
   if (report.explained) {
@@ -369,12 +391,13 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     }
   } else {
     if (!(report.disagreementFraction <= thresholds.disagreement)) {
-      report.reasons.push_back("different triangle at " + std::to_string(report.disagreementFraction) +
-                               " of covered pixels, limit " + std::to_string(thresholds.disagreement));
+      report.reasons.push_back("different triangle at " +
+                               overLimit(report.disagreementFraction, thresholds.disagreement,
+                                         " of covered pixels, limit "));
     }
     if (!(report.coverageFraction <= thresholds.coverage)) {
-      report.reasons.push_back("one-side-only coverage at " + std::to_string(report.coverageFraction) +
-                               " of covered pixels, limit " + std::to_string(thresholds.coverage));
+      report.reasons.push_back("one-side-only coverage at " +
+                               overLimit(report.coverageFraction, thresholds.coverage, " of covered pixels, limit "));
     }
   }
   report.pass = report.reasons.empty();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,15 @@ struct Thresholds {
   // images, and the others either image carries are left out. Empty: every one either image
   // carries, each required in both.
   std::vector<std::string> attributes = {};
+  // Per attribute family, by name ("color"): its own limit in place of `attribute`. Each name
+  // must be an attribute family compared, or compareImages refuses it as a usage error.
+  std::map<std::string, double> attributeByName = {};
+
+  // The limit of attribute family `name` ("uv", without "attr."): its own, else `attribute`.
+  double attributeLimit(const std::string& name) const {
+    const auto it = attributeByName.find(name);
+    return it == attributeByName.end() ? attribute : it->second;
+  }
 };
 
 struct FamilyReport {

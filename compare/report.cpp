@@ -61,7 +61,8 @@ nlohmann::json reportToJson(const CompareReport& r) {
                      {"disagreement", r.thresholds.disagreement},
                      {"coverage", r.thresholds.coverage},
                      {"allow_empty", r.thresholds.allowEmpty},
-                     {"attributes", r.thresholds.attributes}};
+                     {"attributes", r.thresholds.attributes},
+                     {"attribute_by_name", r.thresholds.attributeByName}};
   j["left_out"] = r.leftOut;
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {

@@ -207,6 +207,61 @@ TEST(Compare, AttributesOptionComparesOnlyTheFamiliesNamed) {
       << message;
 }
 
+// --max-attr: one limit for every attribute, and NAME=LIMIT for one; a name that gates nothing
+// (neither image carries it, or --attributes leaves it out) is a usage error. A reason prints
+// as many digits as tell the error from its limit.
+TEST(Compare, EachAttributeMayHaveItsOwnLimit) {
+  const auto withColor = [] {
+    Framebuffer fb = image();
+    float* c = fb.addFloat(channels::attributeChannel("color", 0));
+    for (int i = 0; i < kW * kH; ++i) c[i] = float(i % kW) * 0.25f;  // range 2.25
+    return fb;
+  };
+  Framebuffer test = withColor();
+  at(test, channels::attributeChannel("uv", 1), 2, 2) = 2.5f;                    // 0.5 of 9: 0.0556
+  at(test, channels::attributeChannel("color", 0), 4, 1) = 4 * 0.25f + 0.25f;  // 0.25 of 2.25: 0.111
+  const Framebuffer ref = withColor();
+  const auto gate = [&](const Thresholds& t) { return compareImages(test, "test.exr", ref, "ref.exr", t, nullptr); };
+
+  const CompareReport byDefault = gate(Thresholds{});
+  EXPECT_EQ(byDefault.reasons, (std::vector<std::string>{"attr.color: max error 0.111 of range exceeds 0.0001",
+                                                         "attr.uv: max error 0.0556 of range exceeds 0.0001"}));
+  Thresholds uvLoose;
+  uvLoose.attributeByName = {{"uv", 0.06}};
+  const CompareReport loose = gate(uvLoose);
+  EXPECT_EQ(family(loose, "attr.uv").threshold, 0.06);
+  EXPECT_EQ(family(loose, "attr.color").threshold, 1e-4);
+  EXPECT_EQ(loose.reasons, (std::vector<std::string>{"attr.color: max error 0.111 of range exceeds 0.0001"}));
+  EXPECT_EQ(reportToJson(loose)["thresholds"]["attribute_by_name"], (nlohmann::json{{"uv", 0.06}}));
+  EXPECT_EQ(reportToJson(loose)["families"]["attr.uv"]["threshold"], 0.06);
+
+  Thresholds uvTight;
+  uvTight.attribute = 0.2;
+  uvTight.attributeByName = {{"uv", 0.05}};
+  EXPECT_EQ(gate(uvTight).reasons, (std::vector<std::string>{"attr.uv: max error 0.0556 of range exceeds 0.05"}));
+  uvTight.attributeByName["uv"] = 0.06;
+  EXPECT_TRUE(gate(uvTight).pass);
+  EXPECT_EQ(reportToJson(gate(Thresholds{}))["thresholds"]["attribute_by_name"], nlohmann::json::object());
+
+  // A limit just below the error still reads as below it.
+  Thresholds justBelow;
+  justBelow.attributeByName = {{"color", std::nextafter(0.25 / 2.25, 0.0)}, {"uv", 1.0}};
+  const std::vector<std::string> reasons = gate(justBelow).reasons;
+  ASSERT_EQ(reasons.size(), 1u);
+  EXPECT_EQ(reasons[0], "attr.color: max error 0.1111111111111111 of range exceeds 0.11111111111111109");
+
+  std::string message;
+  Thresholds typo;
+  typo.attributeByName = {{"colour", 1.0}};
+  EXPECT_EQ(incompatibility(test, ref, &message, typo), int(ExitCode::kUsage));
+  EXPECT_EQ(message, "--max-attr colour: neither test.exr nor ref.exr carries it (they carry color, uv)");
+  Thresholds leftOut;
+  leftOut.attributes = {"color"};
+  leftOut.attributeByName = {{"uv", 1.0}};
+  EXPECT_EQ(incompatibility(test, ref, &message, leftOut), int(ExitCode::kUsage));
+  EXPECT_EQ(message, "--max-attr uv: --attributes leaves it out, so it is not compared");
+}
+
 TEST(Compare, HeatmapHasErrorAndClassChannels) {
   Framebuffer test = image();
   at(test, channels::kBary[0], 3, 4) = 0.3f;

@@ -444,7 +444,10 @@ TEST(BadInput, Options) {
                            // a choice's name only, not the number behind it (CLI11 took `--mode 1` as affine)
                            "check --mode 1", "check --precision 0", "check --raster-isa 3", "check --cull 1",
                            "compare a.exr b.exr --heatmap-shows 2", "render cube --backend 1 -o x.exr",
-                           "render cube --backend gpu -o x.exr"}) {
+                           "render cube --backend gpu -o x.exr",
+                           // --max-attr: LIMIT or NAME=LIMIT, each once
+                           "check --max-attr uv", "check --max-attr =1", "check --max-attr uv=", "check --max-attr uv=-1",
+                           "check --max-attr uv=nan", "check --max-attr 1,2", "compare a.exr b.exr --max-attr uv=1,uv=2"}) {
     const Outcome r = rastercheck(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
   }

@@ -1041,6 +1041,62 @@ TEST(Cli, AnotherRenderersImageIsJudgedAgainstTheReference) {
   EXPECT_FALSE(fs::exists(heat));
 }
 
+// --max-attr as a user gives it: LIMIT for every attribute, NAME=LIMIT for one, repeated or
+// comma-separated; a name the scene or the images do not carry is refused before any work.
+TEST(Cli, MaxAttrGivesEveryAttributeOrOneByNameItsLimit) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string test = (dir / "t.exr").string(), ref = (dir / "r.exr").string(), json = (dir / "c.json").string();
+  ASSERT_EQ(run("render sphere --no-diagnostics -o " + test).exitCode, 0);
+  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
+  const std::string pair = "compare " + test + " " + ref + " ";
+  ASSERT_EQ(run(pair).exitCode, 0) << "the float rasterizer's attributes are within the default limit";
+
+  const CliRun everyOne = run(pair + "--max-attr 1e-9");
+  EXPECT_EQ(everyOne.exitCode, 1) << everyOne.output;
+  for (const char* family : {"attr.normal", "attr.uv"}) {
+    EXPECT_NE(everyOne.output.find(std::string(family) + ": max error "), std::string::npos) << everyOne.output;
+  }
+  EXPECT_NE(everyOne.output.find(" of range exceeds 1e-09"), std::string::npos) << "not 0.000000\n" << everyOne.output;
+
+  const CliRun normalOnly = run(pair + "--max-attr normal=1e-9 --json " + json);
+  EXPECT_EQ(normalOnly.exitCode, 1) << normalOnly.output;
+  EXPECT_NE(normalOnly.output.find("attr.normal: max error "), std::string::npos) << normalOnly.output;
+  EXPECT_EQ(normalOnly.output.find("attr.uv: max error "), std::string::npos) << normalOnly.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ(j["thresholds"]["attribute_by_name"], (nlohmann::json{{"normal", 1e-9}}));
+  EXPECT_EQ(j["families"]["attr.normal"]["threshold"], 1e-9);
+  EXPECT_EQ(j["families"]["attr.uv"]["threshold"], 1e-4);
+
+  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1,normal=1").exitCode, 0);
+  EXPECT_EQ(run(pair + "--max-attr 1e-9 --max-attr uv=1 --max-attr normal=1").exitCode, 0);
+  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1").exitCode, 1);
+
+  const std::string heat = (dir / "heat.exr").string();
+  const CliRun typo = run(pair + "--max-attr nromal=1 --heatmap " + heat);
+  EXPECT_EQ(typo.exitCode, 2) << typo.output;
+  EXPECT_NE(typo.output.find("--max-attr nromal: neither " + test + " nor " + ref + " carries it (they carry normal, uv)"),
+            std::string::npos)
+      << typo.output;
+  EXPECT_FALSE(fs::exists(heat));
+
+  // check refuses before it renders anything.
+  const CliRun notCarried = run("check sphere floor --max-attr normal=1 --json " + json);
+  EXPECT_EQ(notCarried.exitCode, 2) << notCarried.output;
+  EXPECT_NE(notCarried.output.find("floor: --max-attr names 'normal', which the scene does not carry (it has: uv)"),
+            std::string::npos)
+      << notCarried.output;
+  EXPECT_EQ(notCarried.output.find("PASS"), std::string::npos) << notCarried.output;
+  const CliRun leftOut = run("check sphere --attributes uv --max-attr normal=1");
+  EXPECT_EQ(leftOut.exitCode, 2) << leftOut.output;
+  EXPECT_NE(leftOut.output.find("sphere: --max-attr names 'normal', which --attributes leaves out"), std::string::npos)
+      << leftOut.output;
+  const CliRun gated = run("check sphere cube --no-diagnostics --max-attr uv=1e-9 -q");
+  EXPECT_EQ(gated.exitCode, 1) << gated.output;
+  EXPECT_NE(gated.output.find("attr.uv: max error"), std::string::npos) << gated.output;
+  EXPECT_EQ(gated.output.find("attr.normal: max error"), std::string::npos) << gated.output;
+}
+
 TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
   const rc::testing::TempDir temp;
   const std::string dir = (temp.path() / "exported").string();
