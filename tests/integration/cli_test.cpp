@@ -1,4 +1,5 @@
-// The CLI as a user meets it: exit codes, messages, and files written or not written.
+// The CLI as a user meets it: exit codes, messages, and files written or not written (bench in
+// bench_cli_test.cpp, compare in compare_cli_test.cpp).
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -9,25 +10,18 @@
 #include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string>
 #include <vector>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
 
 #include "core/exr_io.h"
-#include "core/parallel.h"
-#include "rasterizer/rasterizer.h"
-#include "raytracer_ref/reference.h"
 #include "scenes/registry.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
@@ -39,7 +33,6 @@ namespace fs = std::filesystem;
 using CliRun = rc::testing::CommandResult;
 
 CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
-
 
 TEST(Cli, HelpAndScenesExitZero) {
   EXPECT_EQ(run("--help").exitCode, 0);
@@ -159,85 +152,6 @@ TEST(Cli, AffineCheckExitsOne) {
   EXPECT_NE(r.output.find("FAIL"), std::string::npos);
 }
 
-TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
-  const rc::testing::TempDir temp;  // removed at the end of the test
-  const fs::path& dir = temp.path();
-  const std::string exr = (dir / "floor.exr").string();
-  ASSERT_EQ(run("render floor --backend raster -o " + exr).exitCode, 0);
-  const CliRun r = run("compare " + exr + " " + exr + " --json " + (dir / "self.json").string() +
-                    " --heatmap " + (dir / "heat.exr").string());
-  EXPECT_EQ(r.exitCode, 0) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "self.json"));
-  EXPECT_EQ(j["families"]["bary"]["max"], 0.0);
-  EXPECT_EQ(j["families"]["depth"]["max"], 0.0);
-  EXPECT_EQ(j["pixels"]["different_triangle"], 0);
-  EXPECT_TRUE(fs::exists(dir / "heat.exr"));
-}
-
-// Every command that writes an EXR takes --exr-compression; each file says the codec it was
-// written with, and every codec reads back as the same image (the same figures).
-TEST(Cli, ExrCompressionIsTheOneAskedForAndEveryCodecComparesTheSame) {
-  const rc::testing::TempDir temp;
-  const fs::path& dir = temp.path();
-  const auto codecOf = [](const fs::path& path) { return Imf::InputFile(path.c_str()).header().compression(); };
-  const std::string ref = (dir / "ref.exr").string();
-  ASSERT_EQ(run("render floor --backend reference -o " + ref).exitCode, 0);
-  EXPECT_EQ(codecOf(ref), Imf::ZIP_COMPRESSION) << "the default";
-  std::string baseline;
-  for (const auto& [name, codec] : {std::pair{"zip", Imf::ZIP_COMPRESSION}, std::pair{"piz", Imf::PIZ_COMPRESSION},
-                                    std::pair{"zips", Imf::ZIPS_COMPRESSION}, std::pair{"rle", Imf::RLE_COMPRESSION},
-                                    std::pair{"none", Imf::NO_COMPRESSION}}) {
-    SCOPED_TRACE(name);
-    const fs::path raster = dir / (std::string(name) + ".exr"), heat = dir / (std::string(name) + ".heat.exr");
-    const fs::path out = dir / name;
-    ASSERT_EQ(run("render floor --exr-compression " + std::string(name) + " -o " + raster.string()).exitCode, 0);
-    EXPECT_EQ(codecOf(raster), codec);
-    const CliRun r = run("compare " + raster.string() + " " + ref + " --threads 1 --heatmap " + heat.string() +
-                         " --exr-compression " + name);
-    EXPECT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(codecOf(heat), codec);
-    if (baseline.empty()) baseline = r.output.substr(r.output.find("pixels"));
-    EXPECT_EQ(r.output.substr(r.output.find("pixels")), baseline) << "the same figures whatever the codec";
-    ASSERT_EQ(run("check floor -q --out " + out.string() + " --exr-compression " + name).exitCode, 0);
-    for (const char* file : {"floor.raster.exr", "floor.reference.exr", "floor.heatmap.exr"}) {
-      EXPECT_EQ(codecOf(out / file), codec) << file;
-    }
-  }
-  const CliRun bad = run("render floor --exr-compression dwaa -o " + (dir / "lossy.exr").string());
-  EXPECT_EQ(bad.exitCode, 2) << bad.output;
-  EXPECT_NE(bad.output.find("zip|piz|zips|rle|none"), std::string::npos) << bad.output;
-  EXPECT_FALSE(fs::exists(dir / "lossy.exr"));
-}
-
-TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {
-  const rc::testing::TempDir temp;  // removed at the end of the test
-  const fs::path& dir = temp.path();
-  const std::string exr = (dir / "cube.exr").string(), cut = (dir / "cut.exr").string();
-  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
-  const std::uintmax_t size = fs::file_size(exr);
-  fs::copy_file(exr, cut);
-  fs::resize_file(cut, size / 2);
-  const CliRun r = run("compare " + cut + " " + exr + " --json " + (dir / "r.json").string());
-  EXPECT_EQ(r.exitCode, 3) << r.output;
-  EXPECT_NE(r.output.find(cut), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(dir / "r.json"));
-}
-
-TEST(Cli, MismatchedSizesAndMissingChannelsAreExitThree) {
-  const rc::testing::TempDir temp;  // removed at the end of the test
-  const fs::path& dir = temp.path();
-  const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(), c = (dir / "c.exr").string();
-  ASSERT_EQ(run("render cube -o " + a + " --size 64x48").exitCode, 0);
-  ASSERT_EQ(run("render cube -o " + b + " --size 64x64").exitCode, 0);
-  ASSERT_EQ(run("render sphere -o " + c + " --size 64x48").exitCode, 0);  // has attr.normal
-  const CliRun sizes = run("compare " + a + " " + b);
-  EXPECT_EQ(sizes.exitCode, 3) << sizes.output;
-  EXPECT_NE(sizes.output.find("differs"), std::string::npos) << sizes.output;
-  const CliRun channels = run("compare " + a + " " + c);
-  EXPECT_EQ(channels.exitCode, 3) << channels.output;
-  EXPECT_NE(channels.output.find("attr.normal"), std::string::npos) << channels.output;
-}
-
 TEST(Cli, MissingInputIsExitFour) {
   const CliRun r = run("compare /nonexistent/a.exr /nonexistent/b.exr");
   EXPECT_EQ(r.exitCode, 4) << r.output;
@@ -323,269 +237,6 @@ TEST(Cli, ProgressIsPlainLinesOffATerminalABarOnOneAndNothingWhenQuiet) {
       rc::testing::runCommand("script -qec '" + rc::testing::rastercheckExe() + " check cube sphere' /dev/null").output;
   EXPECT_NE(tty.find("\r\033[K["), std::string::npos) << "no bar redrawn in place";
   EXPECT_EQ(tty.find("rastercheck: [1/4]"), std::string::npos) << "plain lines on a terminal";
-}
-
-TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
-  const rc::testing::TempDir temp;  // removed at the end of the test
-  const fs::path& dir = temp.path();
-  const CliRun r = run("bench cube --runs 3 -q --json " + (dir / "b.json").string() + " --csv " +
-                       (dir / "b.csv").string() + " --chart " + (dir / "b.svg").string());
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
-  ASSERT_EQ(j["format_version"], 1);
-  const auto& rows = j["rows"];
-  // An AVX2 row joins where the default's kernels are AVX-512.
-  const bool avx512 = rc::resolveKernelIsa(rc::KernelIsa::kAuto) == rc::KernelIsa::kAvx512;
-  ASSERT_EQ(rows.size(), avx512 ? 11u : 10u);
-  int defaults = 0;
-  double perspective = -1, affine = -1, dbl = -1, sse2 = -2, lean = -3, avx2 = -4;
-  for (const auto& row : rows) {
-    for (const char* key : {"scene", "triangles", "width", "height", "threads", "setting", "default", "raster_ms",
-                            "reference_build_ms", "reference_trace_ms", "speedup", "bary_max_error",
-                            "bary_p999_error", "disagreement_fraction", "reference_isa", "raster_isa", "store_floor_ms",
-                            "diagnostics", "cull"}) {
-      ASSERT_TRUE(row.contains(key)) << key;
-    }
-    // Unpinned, the reference runs Embree's fastest mode on this CPU.
-    EXPECT_EQ(row["reference_isa"], rc::fastestEmbreeIsa());
-    EXPECT_NEAR(row["speedup"].get<double>(), row["reference_trace_ms"].get<double>() / row["raster_ms"].get<double>(), 1e-9);
-    // Every timed frame and trace, round by round: the medians come from them, and the
-    // per-round ratios pair the frame and the trace of the same round. With an odd number of
-    // runs the ratios' least and greatest bracket the ratio of the medians.
-    const std::vector<double> frames = row.at("raster_ms_runs"), traces = row.at("reference_trace_ms_runs");
-    ASSERT_EQ(frames.size(), 3u);
-    ASSERT_EQ(traces.size(), 3u);
-    const auto middle = [](std::vector<double> v) {
-      std::sort(v.begin(), v.end());
-      return v[1];
-    };
-    EXPECT_EQ(middle(frames), row["raster_ms"].get<double>());
-    EXPECT_EQ(middle(traces), row["reference_trace_ms"].get<double>());
-    double least = traces[0] / frames[0], greatest = least;
-    for (std::size_t k = 1; k < 3; ++k) {
-      least = std::min(least, traces[k] / frames[k]);
-      greatest = std::max(greatest, traces[k] / frames[k]);
-    }
-    EXPECT_EQ(row["speedup_min"].get<double>(), least);
-    EXPECT_EQ(row["speedup_max"].get<double>(), greatest);
-    EXPECT_LE(least, row["speedup"].get<double>());
-    EXPECT_GE(greatest, row["speedup"].get<double>());
-    // The spread brackets the median; every stage took time, and none more than the slowest frame.
-    EXPECT_LE(row["raster_ms_min"].get<double>(), row["raster_ms"].get<double>());
-    EXPECT_GE(row["raster_ms_max"].get<double>(), row["raster_ms"].get<double>());
-    for (const char* stage : {"transform", "setup", "bin", "tiles"}) {
-      const double ms = row["stage_ms"].at(stage).get<double>();
-      EXPECT_GT(ms, 0.0) << stage;
-      EXPECT_LE(ms, row["raster_ms_max"].get<double>()) << stage;
-    }
-    EXPECT_GT(row["store_floor_ms"].get<double>(), 0.0);
-    // EXR writing is timed apart, for the default setting only.
-    EXPECT_EQ(row.contains("exr_write_ms"), row["default"].get<bool>()) << row["setting"];
-    if (row.contains("exr_write_ms")) {
-      EXPECT_GT(row["exr_write_ms"].get<double>(), 0.0);
-    }
-    defaults += row["default"].get<bool>();
-    if (row["setting"] == "perspective-float-8bit") perspective = row["bary_p999_error"];
-    if (row["setting"] == "affine-float-8bit") affine = row["bary_p999_error"];
-    if (row["setting"] == "perspective-double-8bit") dbl = row["bary_p999_error"];
-    if (row["setting"] == "perspective-float-8bit-sse2") sse2 = row["bary_max_error"];
-    if (row["setting"] == "perspective-float-8bit-nodiag") lean = row["bary_max_error"];
-    if (row["setting"] == "perspective-float-8bit-avx2") avx2 = row["bary_max_error"];
-    // Each row says whether it wrote the diagnostic channels and how it culled.
-    EXPECT_EQ(row["diagnostics"].get<bool>(), row["setting"] != "perspective-float-8bit-nodiag") << row["setting"];
-    EXPECT_EQ(row["cull"], row["setting"] == "perspective-float-8bit-nocull" ? "none" : "auto") << row["setting"];
-    // Each row names the kernels it ran.
-    const std::string isa = row["raster_isa"];
-    if (row["setting"] == "perspective-float-8bit-sse2") {
-      EXPECT_EQ(isa, "sse2");
-    } else if (row["setting"] == "perspective-float-8bit-avx2") {
-      EXPECT_EQ(isa, "avx2");
-    } else {
-      EXPECT_EQ(isa, rc::kernelIsaName(rc::resolveKernelIsa(rc::KernelIsa::kAuto))) << row["setting"];
-    }
-  }
-  // The SSE2 kernels and the lean output write the default's bits: the same error.
-  double perspectiveMax = -1;
-  for (const auto& row : rows) {
-    if (row["setting"] == "perspective-float-8bit") perspectiveMax = row["bary_max_error"];
-  }
-  EXPECT_EQ(sse2, perspectiveMax);
-  EXPECT_EQ(lean, perspectiveMax);
-  if (avx512) {
-    EXPECT_EQ(avx2, perspectiveMax);
-  }
-  EXPECT_EQ(defaults, 1);
-  // The table's throughput columns are the row's: triangles and pixels over the median frame.
-  for (const auto& row : rows) {
-    const double seconds = row["raster_ms"].get<double>() * 1e-3;
-    EXPECT_NEAR(row["triangles_per_second"].get<double>(), row["triangles"].get<double>() / seconds, 1e-6);
-    EXPECT_NEAR(row["pixels_per_second"].get<double>(), row["width"].get<double>() * row["height"].get<double>() / seconds, 1e-3);
-    if (!row["default"].get<bool>()) continue;
-    const std::size_t at = r.output.find("perspective-float-8bit *");
-    ASSERT_NE(at, std::string::npos) << r.output;
-    std::istringstream line(r.output.substr(at, r.output.find('\n', at) - at));
-    std::string setting, star, median, spread;
-    double mtri = 0, mpix = 0;
-    line >> setting >> star >> median >> spread >> mtri >> mpix;
-    EXPECT_NEAR(mtri, row["triangles_per_second"].get<double>() * 1e-6, 0.006 * mtri) << r.output;
-    EXPECT_NEAR(mpix, row["pixels_per_second"].get<double>() * 1e-6, 0.5) << r.output;
-  }
-  EXPECT_GT(affine, 100 * perspective) << "affine must show as far less accurate";
-  EXPECT_LE(dbl, perspective);
-  std::ifstream csv(dir / "b.csv");
-  std::string line;
-  int lines = 0;
-  while (std::getline(csv, line)) {
-    if (lines == 0) {
-      EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max,reference_build,reference_low_build_ms,"
-                                 "reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
-                                 "speedup_with_build_quality")) << line;
-    }
-    ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 37) << "38 columns in every line: " << line;
-  }
-  EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
-  std::ifstream svgFile(dir / "b.svg");
-  const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
-  EXPECT_NE(svg.find("<svg"), std::string::npos);
-  EXPECT_NE(svg.find("Pareto"), std::string::npos);
-  EXPECT_EQ(run("bench cube --runs 0").exitCode, 2);
-  // The figures carry what they were measured on, in the JSON and on stdout.
-  const auto& machine = j["machine"];
-  const std::string cpu = machine["cpu"];
-  EXPECT_FALSE(cpu.empty());
-  EXPECT_NE(r.output.find("machine: " + cpu + ", " + std::to_string(rc::resolveThreadCount(0)) + " logical CPU"),
-            std::string::npos) << r.output;
-  EXPECT_EQ(machine["logical_cpus"], rc::resolveThreadCount(0));
-  EXPECT_EQ(machine["widest_kernel_isa"], rc::kernelIsaName(rc::resolveKernelIsa(rc::KernelIsa::kAuto)));
-  EXPECT_EQ(machine["fastest_embree_isa"], rc::fastestEmbreeIsa());
-  // The library's version as it reports it, with the major version of the headers built against.
-  const std::string embree = machine["embree"];
-  EXPECT_EQ(embree.rfind(std::to_string(RTC_VERSION_MAJOR) + ".", 0), 0u) << embree;
-  EXPECT_EQ(std::count(embree.begin(), embree.end(), '.'), 2) << embree;
-  EXPECT_NE(run("--version").output.find("rastercheck " + machine["rastercheck"].get<std::string>() + "\n"),
-            std::string::npos);
-  const std::string compiler = machine["compiler"];
-  EXPECT_TRUE(compiler.rfind("GCC ", 0) == 0 || compiler.rfind("clang ", 0) == 0) << compiler;
-  EXPECT_EQ(run("check cube --bench-json " + (dir / "b.json").string()).exitCode, 2) << "needs --report";
-  std::ofstream(dir / "bad.json") << R"({"format_version": 1, "rows": [{"scene": "x"}]})";
-  const CliRun bad = run("check cube -q --report " + (dir / "rep").string() + " --bench-json " + (dir / "bad.json").string());
-  EXPECT_EQ(bad.exitCode, 3) << bad.output;
-  EXPECT_NE(bad.output.find("/rows/0"), std::string::npos) << bad.output;
-  // A machine that is there must be whole: the report shows it.
-  nlohmann::json mistyped = j;
-  mistyped["machine"]["logical_cpus"] = "two";
-  std::ofstream(dir / "bad_machine.json") << mistyped.dump();
-  const CliRun badMachine = run("check cube -q --report " + (dir / "rep2").string() + " --bench-json " +
-                                (dir / "bad_machine.json").string());
-  EXPECT_EQ(badMachine.exitCode, 3) << badMachine.output;
-  EXPECT_NE(badMachine.output.find("bad_machine.json: /machine"), std::string::npos) << badMachine.output;
-  EXPECT_FALSE(fs::exists(dir / "rep2" / "index.html")) << "no partial report";
-  // Results from before bench wrote a machine still make a report, without the line.
-  nlohmann::json older = j;
-  older.erase("machine");
-  std::ofstream(dir / "older.json") << older.dump();
-  const CliRun fromOlder =
-      run("check cube -q --report " + (dir / "rep3").string() + " --bench-json " + (dir / "older.json").string());
-  ASSERT_EQ(fromOlder.exitCode, 0) << fromOlder.output;
-  std::ifstream page(dir / "rep3" / "index.html");
-  const std::string html((std::istreambuf_iterator<char>(page)), {});
-  EXPECT_NE(html.find("Speed against error"), std::string::npos);
-  EXPECT_EQ(html.find("Measured on:"), std::string::npos);
-}
-
-// --embree-isa pins the reference's ISA in bench too; the table and the rows name it.
-TEST(Cli, BenchTracesWithThePinnedEmbreeIsa) {
-  const rc::testing::TempDir temp;
-  const fs::path json = temp.path() / "b.json";
-  const CliRun r = run("bench floor --runs 1 -q --embree-isa sse2 --json " + json.string());
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("reference: Embree sse2, its BVH built in medium and in low quality"), std::string::npos) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-  for (const auto& row : j["rows"]) EXPECT_EQ(row["reference_isa"], "sse2");
-  const CliRun unpinned = run("bench floor --runs 1 -q");
-  EXPECT_NE(unpinned.output.find("reference: Embree " + rc::fastestEmbreeIsa() + " (the fastest"), std::string::npos)
-      << unpinned.output;
-}
-
-// bench times the reference's BVH built in medium and in low quality and counts each speed-up
-// against the better for it: the trace against the faster trace, the sum against the smaller
-// sum. --embree-build pins one quality.
-TEST(Cli, BenchCountsEachSpeedupAgainstTheBetterBuildQuality) {
-  const rc::testing::TempDir temp;
-  const fs::path json = temp.path() / "b.json";
-  const CliRun both = run("bench cube blob:tris=20000 --size 640x360 --runs 3 -q --json " + json.string());
-  ASSERT_EQ(both.exitCode, 0) << both.output;
-  const nlohmann::json bothRows = nlohmann::json::parse(std::ifstream(json))["rows"];  // a copy: the parsed document is a temporary
-  for (const auto& row : bothRows) {
-    ASSERT_EQ(row["reference_builds"].size(), 2u) << row;
-    EXPECT_EQ(row["reference_builds"][0]["build"], "medium");
-    EXPECT_EQ(row["reference_builds"][1]["build"], "low");
-    double trace = 1e300, sum = 1e300;
-    std::string fasterTrace, smallerSum;
-    for (const auto& b : row["reference_builds"]) {
-      const double t = b["trace_ms"].get<double>(), total = b["build_ms"].get<double>() + t;
-      if (t < trace) trace = t, fasterTrace = b["build"];
-      if (total < sum) sum = total, smallerSum = b["build"];
-    }
-    const double raster = row["raster_ms"].get<double>();
-    EXPECT_EQ(row["reference_build"], fasterTrace) << row;
-    EXPECT_EQ(row["reference_trace_ms"].get<double>(), trace) << row;
-    EXPECT_NEAR(row["speedup"].get<double>(), trace / raster, 1e-9 * trace / raster) << row;
-    EXPECT_EQ(row["speedup_with_build_quality"], smallerSum) << row;
-    EXPECT_NEAR(row["speedup_with_build"].get<double>(), sum / raster, 1e-9 * sum / raster) << row;
-  }
-  const CliRun pinned = run("bench cube --runs 1 -q --embree-build high --json " + json.string());
-  ASSERT_EQ(pinned.exitCode, 0) << pinned.output;
-  EXPECT_NE(pinned.output.find(", high build\n"), std::string::npos) << pinned.output;
-  const nlohmann::json pinnedRows = nlohmann::json::parse(std::ifstream(json))["rows"];
-  for (const auto& row : pinnedRows) {
-    ASSERT_EQ(row["reference_builds"].size(), 1u) << row;
-    EXPECT_EQ(row["reference_build"], "high");
-    EXPECT_EQ(row["speedup_with_build_quality"], "high");
-  }
-}
-
-// The chart's format follows its name: .png writes a PNG; a name that is neither .svg nor .png
-// is a usage error before anything runs, and nothing is written. The command line's arithmetic
-// joins the sweep as a row of its own.
-TEST(Cli, BenchChartIsWrittenInTheFormatItsNameAsks) {
-  const rc::testing::TempDir temp;
-  const fs::path& dir = temp.path();
-  const CliRun bad = run("bench floor --runs 1 -q --json " + (dir / "b.json").string() + " --chart " +
-                         (dir / "chart.bmp").string());
-  EXPECT_EQ(bad.exitCode, 2) << bad.output;
-  EXPECT_NE(bad.output.find("chart.bmp: name it .svg or .png"), std::string::npos) << bad.output;
-  EXPECT_FALSE(fs::exists(dir / "b.json"));
-  EXPECT_FALSE(fs::exists(dir / "chart.bmp"));
-
-  const CliRun r = run("bench floor --runs 1 -q --mode affine --precision double --json " + (dir / "b.json").string() +
-                       " --chart " + (dir / "chart.PNG").string());
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream png(dir / "chart.PNG", std::ios::binary);
-  std::string signature(8, '\0');
-  png.read(signature.data(), 8);
-  EXPECT_EQ(signature, std::string("\x89PNG\r\n\x1a\n", 8));
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "b.json"));
-  int asked = 0;
-  for (const auto& row : j["rows"]) asked += row["setting"] == "affine-double-8bit";
-  EXPECT_EQ(asked, 1);
-  EXPECT_NE(r.output.find("affine-double-8bit"), std::string::npos) << r.output;
-}
-
-// bench times the settings in rounds, every setting once per round, and says so as it goes:
-// progress counts the reference, each round and the errors, and reaches its total.
-TEST(Cli, BenchTimesTheSettingsRoundByRound) {
-  const CliRun r = run("bench cube --runs 3");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* step : {"[1/5] cube: reference builds", "[2/5] cube: round 1 of 3",
-                           "[4/5] cube: round 3 of 3", "[5/5] cube: errors"}) {
-    EXPECT_NE(r.output.find(step), std::string::npos) << step << "\n" << r.output;
-  }
-  EXPECT_NE(r.output.find("medians of 3 runs, the reference's trace and the settings timed in turn"), std::string::npos) << r.output;
-  const CliRun once = run("bench cube --runs 1 -q");
-  ASSERT_EQ(once.exitCode, 0) << once.output;
-  EXPECT_EQ(once.output.rfind("one run, the reference's trace and the settings timed in turn", 0), 0u) << once.output;
 }
 
 TEST(Cli, OutputThatIsAlsoAnInputIsRefused) {
@@ -857,46 +508,6 @@ TEST(Cli, ASceneNamedInBytesThatAreNotUtf8IsReportedWithReplacementCharacters) {
   }
 }
 
-// bench --csv: a scene whose path holds a comma and quotes, and is longer than any fixed line
-// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 32 columns.
-TEST(Cli, BenchCsvQuotesAnySceneName) {
-  const rc::testing::TempDir temp;
-  fs::path dir = temp.path();
-  for (int level = 0; level < 4; ++level) dir /= std::string(200, char('a' + level));
-  fs::create_directories(dir);
-  const fs::path obj = dir / "a \"quoted\", name.obj";
-  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
-  const std::string csv = (temp.path() / "b.csv").string();
-  std::string quotedArg;  // the path in single quotes for the shell
-  for (char c : obj.string()) quotedArg += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  const CliRun r = run("bench '" + quotedArg + "' --runs 1 -q --csv " + csv);
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream in(csv);
-  std::string header, line;
-  ASSERT_TRUE(std::getline(in, header));
-  ASSERT_TRUE(std::getline(in, line));
-  // Split by RFC 4180.
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  EXPECT_FALSE(quoted) << line;
-  ASSERT_EQ(fields.size(), 38u) << line;
-  EXPECT_EQ(fields[0], obj.string());
-  EXPECT_EQ(fields[1], "1");  // triangles
-}
-
 // check --junit: a test case per scene for CI's test reports, a failure with the gate's reasons
 // where the scene failed, names escaped.
 TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
@@ -928,31 +539,6 @@ TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
   EXPECT_EQ(run("check cube --junit " + (temp.path() / "r.json").string()).exitCode, 2);
 }
 
-// compare --junit: one test case, named by the test image, with the reference as a property.
-TEST(Cli, CompareWritesJUnitXmlWithOneCase) {
-  const rc::testing::TempDir temp;
-  const std::string raster = (temp.path() / "cube.raster.exr").string(), affine = (temp.path() / "cube.affine.exr").string(),
-                    reference = (temp.path() / "cube.reference.exr").string();
-  ASSERT_EQ(run("render cube --backend raster -o " + raster).exitCode, 0);
-  ASSERT_EQ(run("render cube --backend raster --mode affine -o " + affine).exitCode, 0);
-  ASSERT_EQ(run("render cube --backend reference -o " + reference).exitCode, 0);
-  const auto junit = [&](const std::string& test, int expectedExit) {
-    const fs::path xml = temp.path() / "compare.xml";
-    const CliRun r = run("compare " + test + " " + reference + " --junit " + xml.string());
-    EXPECT_EQ(r.exitCode, expectedExit) << r.output;
-    return rc::testing::readFile(xml);
-  };
-  const std::string pass = junit(raster, 0);
-  EXPECT_NE(pass.find("<testsuites name=\"rastercheck compare\" tests=\"1\" failures=\"0\""), std::string::npos) << pass;
-  EXPECT_NE(pass.find("<property name=\"reference\" value=\"" + reference + "\"/>"), std::string::npos) << pass;
-  EXPECT_NE(pass.find("<testcase classname=\"rastercheck.compare\" name=\"" + raster + "\""), std::string::npos) << pass;
-  EXPECT_NE(pass.find("<system-out>640x480: bary max "), std::string::npos) << pass;
-  EXPECT_EQ(pass.find("<failure"), std::string::npos) << pass;
-  const std::string fail = junit(affine, 1);
-  EXPECT_NE(fail.find("tests=\"1\" failures=\"1\""), std::string::npos) << fail;
-  EXPECT_NE(fail.find("<failure type=\"accuracy gate\" message=\"bary: error reaches"), std::string::npos) << fail;
-}
-
 // An image into a terminal would garble it: refused, as any wrong output is, before anything
 // runs. /dev/null, a device too, still takes one.
 TEST(Cli, ImageIntoATerminalIsRefused) {
@@ -976,127 +562,9 @@ TEST(Cli, ImageIntoATerminalIsRefused) {
   EXPECT_EQ(toNull.exitCode, 0) << toNull.output;
 }
 
-}  // namespace
-
 // export: the hard cases as glTF files, which check reads back (with their exact cameras, so
 // the same figures) and another reader, gltfpack, accepts; bad requests are refused before any
 // file or folder appears.
-// docs/your-renderer.md, step by step, with rastercheck's rasterizer standing in for another
-// renderer: an image that carries only what another renderer knows (no diagnostics, no
-// preview) passes on the fixed thresholds; an affine one and one with its rows upside down fail.
-TEST(Cli, AnotherRenderersImageIsJudgedAgainstTheReference) {
-  const rc::testing::TempDir temp;
-  const fs::path& dir = temp.path();
-  const std::string scene = (dir / "sphere.glb").string(), ref = (dir / "sphere.reference.exr").string();
-  ASSERT_EQ(run("export sphere -o " + scene).exitCode, 0);
-  const CliRun described = run("scenes " + scene);
-  EXPECT_NE(described.output.find("attributes: normal (3), uv (2)"), std::string::npos) << described.output;
-  EXPECT_NE(described.output.find("camera: eye=(0,0.80000000000000004,2.7999999999999998) target=(0,0,0)"), std::string::npos)
-      << described.output;
-  ASSERT_EQ(run("render " + scene + " --backend reference -o " + ref).exitCode, 0);
-  // What another renderer writes: the ids, barycentrics, depth and attributes, rows from the top.
-  const auto theirs = [&](const std::string& options, bool flipRows) {
-    const std::string raw = (dir / "raw.exr").string(), out = (dir / "yours.exr").string();
-    EXPECT_EQ(run("render " + scene + " --no-diagnostics " + options + " -o " + raw).exitCode, 0);
-    const rc::Framebuffer full = rc::readExr(raw);
-    rc::Framebuffer kept(full.width(), full.height());
-    const int w = full.width(), h = full.height();
-    for (const rc::Channel& c : full.channels()) {
-      if (c.name == "R" || c.name == "G" || c.name == "B") continue;
-      EXPECT_TRUE(c.name.rfind("bound.", 0) != 0 && c.name != "edge.dist" && c.name != "depth.tie") << c.name;
-      const auto row = [&](int y) { return std::size_t(flipRows ? h - 1 - y : y) * std::size_t(w); };
-      if (c.type == rc::ChannelType::kUint) {
-        std::uint32_t* to = kept.addUint(c.name);
-        for (int y = 0; y < h; ++y) std::copy_n(&c.uints[row(y)], w, to + std::size_t(y) * w);
-      } else {
-        float* to = kept.addFloat(c.name);
-        for (int y = 0; y < h; ++y) std::copy_n(&c.floats[row(y)], w, to + std::size_t(y) * w);
-      }
-    }
-    rc::writeExr(kept, out);
-    return run("compare " + out + " " + ref);
-  };
-  const CliRun good = theirs("", false);
-  EXPECT_EQ(good.exitCode, 0) << good.output;
-  EXPECT_NE(good.output.find("0.0002"), std::string::npos) << "the fixed barycentric limit gates\n" << good.output;
-  const CliRun affine = theirs("--mode affine", false);
-  EXPECT_EQ(affine.exitCode, 1) << affine.output;
-  EXPECT_NE(affine.output.find("bary: max error"), std::string::npos) << affine.output;
-  const CliRun flipped = theirs("", true);
-  EXPECT_EQ(flipped.exitCode, 1) << flipped.output;
-  EXPECT_NE(flipped.output.find("different triangle at"), std::string::npos) << flipped.output;
-
-  // An image with fewer attributes than the reference: refused with the way out, which works.
-  const std::string uv = (dir / "uv.exr").string(), heat = (dir / "heat.exr").string();
-  ASSERT_EQ(run("render " + scene + " --attributes uv -o " + uv).exitCode, 0);
-  const CliRun refused = run("compare " + uv + " " + ref + " --heatmap " + heat);
-  EXPECT_EQ(refused.exitCode, 3) << refused.output;
-  EXPECT_NE(refused.output.find("channel attr.normal.x: missing (present in " + ref + "; --attributes compares only those named)"),
-            std::string::npos)
-      << refused.output;
-  EXPECT_EQ(run("compare " + uv + " " + ref + " --attributes uv").exitCode, 0);
-  const CliRun typo = run("compare " + uv + " " + ref + " --attributes nromal --heatmap " + heat);
-  EXPECT_EQ(typo.exitCode, 2) << typo.output;
-  EXPECT_NE(typo.output.find("(they carry normal, uv)"), std::string::npos) << typo.output;
-  EXPECT_FALSE(fs::exists(heat));
-}
-
-// --max-attr as a user gives it: LIMIT for every attribute, NAME=LIMIT for one, repeated or
-// comma-separated; a name the scene or the images do not carry is refused before any work.
-TEST(Cli, MaxAttrGivesEveryAttributeOrOneByNameItsLimit) {
-  const rc::testing::TempDir temp;
-  const fs::path& dir = temp.path();
-  const std::string test = (dir / "t.exr").string(), ref = (dir / "r.exr").string(), json = (dir / "c.json").string();
-  ASSERT_EQ(run("render sphere --no-diagnostics -o " + test).exitCode, 0);
-  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
-  const std::string pair = "compare " + test + " " + ref + " ";
-  ASSERT_EQ(run(pair).exitCode, 0) << "the float rasterizer's attributes are within the default limit";
-
-  const CliRun everyOne = run(pair + "--max-attr 1e-9");
-  EXPECT_EQ(everyOne.exitCode, 1) << everyOne.output;
-  for (const char* family : {"attr.normal", "attr.uv"}) {
-    EXPECT_NE(everyOne.output.find(std::string(family) + ": max error "), std::string::npos) << everyOne.output;
-  }
-  EXPECT_NE(everyOne.output.find(" of range exceeds 1e-09"), std::string::npos) << "not 0.000000\n" << everyOne.output;
-
-  const CliRun normalOnly = run(pair + "--max-attr normal=1e-9 --json " + json);
-  EXPECT_EQ(normalOnly.exitCode, 1) << normalOnly.output;
-  EXPECT_NE(normalOnly.output.find("attr.normal: max error "), std::string::npos) << normalOnly.output;
-  EXPECT_EQ(normalOnly.output.find("attr.uv: max error "), std::string::npos) << normalOnly.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-  EXPECT_EQ(j["thresholds"]["attribute_by_name"], (nlohmann::json{{"normal", 1e-9}}));
-  EXPECT_EQ(j["families"]["attr.normal"]["threshold"], 1e-9);
-  EXPECT_EQ(j["families"]["attr.uv"]["threshold"], 1e-4);
-
-  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1,normal=1").exitCode, 0);
-  EXPECT_EQ(run(pair + "--max-attr 1e-9 --max-attr uv=1 --max-attr normal=1").exitCode, 0);
-  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1").exitCode, 1);
-
-  const std::string heat = (dir / "heat.exr").string();
-  const CliRun typo = run(pair + "--max-attr nromal=1 --heatmap " + heat);
-  EXPECT_EQ(typo.exitCode, 2) << typo.output;
-  EXPECT_NE(typo.output.find("--max-attr nromal: neither " + test + " nor " + ref + " carries it (they carry normal, uv)"),
-            std::string::npos)
-      << typo.output;
-  EXPECT_FALSE(fs::exists(heat));
-
-  // check refuses before it renders anything.
-  const CliRun notCarried = run("check sphere floor --max-attr normal=1 --json " + json);
-  EXPECT_EQ(notCarried.exitCode, 2) << notCarried.output;
-  EXPECT_NE(notCarried.output.find("floor: --max-attr names 'normal', which the scene does not carry (it has: uv)"),
-            std::string::npos)
-      << notCarried.output;
-  EXPECT_EQ(notCarried.output.find("PASS"), std::string::npos) << notCarried.output;
-  const CliRun leftOut = run("check sphere --attributes uv --max-attr normal=1");
-  EXPECT_EQ(leftOut.exitCode, 2) << leftOut.output;
-  EXPECT_NE(leftOut.output.find("sphere: --max-attr names 'normal', which --attributes leaves out"), std::string::npos)
-      << leftOut.output;
-  const CliRun gated = run("check sphere cube --no-diagnostics --max-attr uv=1e-9 -q");
-  EXPECT_EQ(gated.exitCode, 1) << gated.output;
-  EXPECT_NE(gated.output.find("attr.uv: max error"), std::string::npos) << gated.output;
-  EXPECT_EQ(gated.output.find("attr.normal: max error"), std::string::npos) << gated.output;
-}
-
 TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
   const rc::testing::TempDir temp;
   const std::string dir = (temp.path() / "exported").string();
@@ -1145,3 +613,5 @@ TEST(Cli, ExportWritesScenesAsGltfThatCheckAndOtherToolsRead) {
     EXPECT_FALSE(fs::exists(fresh)) << args;
   }
 }
+
+}  // namespace

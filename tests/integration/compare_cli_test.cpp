@@ -1,0 +1,248 @@
+// `rastercheck compare` as a user meets it: exit codes, messages, codecs, thresholds, and an
+// image from another renderer judged against the reference.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <ImfCompression.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <nlohmann/json.hpp>
+
+#include "core/exr_io.h"
+#include "tests/run_command.h"
+#include "tests/test_files.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using CliRun = rc::testing::CommandResult;
+
+CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
+
+TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
+  const std::string exr = (dir / "floor.exr").string();
+  ASSERT_EQ(run("render floor --backend raster -o " + exr).exitCode, 0);
+  const CliRun r = run("compare " + exr + " " + exr + " --json " + (dir / "self.json").string() +
+                    " --heatmap " + (dir / "heat.exr").string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "self.json"));
+  EXPECT_EQ(j["families"]["bary"]["max"], 0.0);
+  EXPECT_EQ(j["families"]["depth"]["max"], 0.0);
+  EXPECT_EQ(j["pixels"]["different_triangle"], 0);
+  EXPECT_TRUE(fs::exists(dir / "heat.exr"));
+}
+
+// Every command that writes an EXR takes --exr-compression; each file says the codec it was
+// written with, and every codec reads back as the same image (the same figures).
+TEST(Cli, ExrCompressionIsTheOneAskedForAndEveryCodecComparesTheSame) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const auto codecOf = [](const fs::path& path) { return Imf::InputFile(path.c_str()).header().compression(); };
+  const std::string ref = (dir / "ref.exr").string();
+  ASSERT_EQ(run("render floor --backend reference -o " + ref).exitCode, 0);
+  EXPECT_EQ(codecOf(ref), Imf::ZIP_COMPRESSION) << "the default";
+  std::string baseline;
+  for (const auto& [name, codec] : {std::pair{"zip", Imf::ZIP_COMPRESSION}, std::pair{"piz", Imf::PIZ_COMPRESSION},
+                                    std::pair{"zips", Imf::ZIPS_COMPRESSION}, std::pair{"rle", Imf::RLE_COMPRESSION},
+                                    std::pair{"none", Imf::NO_COMPRESSION}}) {
+    SCOPED_TRACE(name);
+    const fs::path raster = dir / (std::string(name) + ".exr"), heat = dir / (std::string(name) + ".heat.exr");
+    const fs::path out = dir / name;
+    ASSERT_EQ(run("render floor --exr-compression " + std::string(name) + " -o " + raster.string()).exitCode, 0);
+    EXPECT_EQ(codecOf(raster), codec);
+    const CliRun r = run("compare " + raster.string() + " " + ref + " --threads 1 --heatmap " + heat.string() +
+                         " --exr-compression " + name);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(codecOf(heat), codec);
+    if (baseline.empty()) baseline = r.output.substr(r.output.find("pixels"));
+    EXPECT_EQ(r.output.substr(r.output.find("pixels")), baseline) << "the same figures whatever the codec";
+    ASSERT_EQ(run("check floor -q --out " + out.string() + " --exr-compression " + name).exitCode, 0);
+    for (const char* file : {"floor.raster.exr", "floor.reference.exr", "floor.heatmap.exr"}) {
+      EXPECT_EQ(codecOf(out / file), codec) << file;
+    }
+  }
+  const CliRun bad = run("render floor --exr-compression dwaa -o " + (dir / "lossy.exr").string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("zip|piz|zips|rle|none"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "lossy.exr"));
+}
+
+TEST(Cli, TruncatedExrIsExitThreeWithTheFileNamedAndNoOutput) {
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
+  const std::string exr = (dir / "cube.exr").string(), cut = (dir / "cut.exr").string();
+  ASSERT_EQ(run("render cube -o " + exr).exitCode, 0);
+  const std::uintmax_t size = fs::file_size(exr);
+  fs::copy_file(exr, cut);
+  fs::resize_file(cut, size / 2);
+  const CliRun r = run("compare " + cut + " " + exr + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find(cut), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "r.json"));
+}
+
+TEST(Cli, MismatchedSizesAndMissingChannelsAreExitThree) {
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const fs::path& dir = temp.path();
+  const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(), c = (dir / "c.exr").string();
+  ASSERT_EQ(run("render cube -o " + a + " --size 64x48").exitCode, 0);
+  ASSERT_EQ(run("render cube -o " + b + " --size 64x64").exitCode, 0);
+  ASSERT_EQ(run("render sphere -o " + c + " --size 64x48").exitCode, 0);  // has attr.normal
+  const CliRun sizes = run("compare " + a + " " + b);
+  EXPECT_EQ(sizes.exitCode, 3) << sizes.output;
+  EXPECT_NE(sizes.output.find("differs"), std::string::npos) << sizes.output;
+  const CliRun channels = run("compare " + a + " " + c);
+  EXPECT_EQ(channels.exitCode, 3) << channels.output;
+  EXPECT_NE(channels.output.find("attr.normal"), std::string::npos) << channels.output;
+}
+
+// compare --junit: one test case, named by the test image, with the reference as a property.
+TEST(Cli, CompareWritesJUnitXmlWithOneCase) {
+  const rc::testing::TempDir temp;
+  const std::string raster = (temp.path() / "cube.raster.exr").string(), affine = (temp.path() / "cube.affine.exr").string(),
+                    reference = (temp.path() / "cube.reference.exr").string();
+  ASSERT_EQ(run("render cube --backend raster -o " + raster).exitCode, 0);
+  ASSERT_EQ(run("render cube --backend raster --mode affine -o " + affine).exitCode, 0);
+  ASSERT_EQ(run("render cube --backend reference -o " + reference).exitCode, 0);
+  const auto junit = [&](const std::string& test, int expectedExit) {
+    const fs::path xml = temp.path() / "compare.xml";
+    const CliRun r = run("compare " + test + " " + reference + " --junit " + xml.string());
+    EXPECT_EQ(r.exitCode, expectedExit) << r.output;
+    return rc::testing::readFile(xml);
+  };
+  const std::string pass = junit(raster, 0);
+  EXPECT_NE(pass.find("<testsuites name=\"rastercheck compare\" tests=\"1\" failures=\"0\""), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<property name=\"reference\" value=\"" + reference + "\"/>"), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<testcase classname=\"rastercheck.compare\" name=\"" + raster + "\""), std::string::npos) << pass;
+  EXPECT_NE(pass.find("<system-out>640x480: bary max "), std::string::npos) << pass;
+  EXPECT_EQ(pass.find("<failure"), std::string::npos) << pass;
+  const std::string fail = junit(affine, 1);
+  EXPECT_NE(fail.find("tests=\"1\" failures=\"1\""), std::string::npos) << fail;
+  EXPECT_NE(fail.find("<failure type=\"accuracy gate\" message=\"bary: error reaches"), std::string::npos) << fail;
+}
+
+// docs/your-renderer.md, step by step, with rastercheck's rasterizer standing in for another
+// renderer: an image that carries only what another renderer knows (no diagnostics, no
+// preview) passes on the fixed thresholds; an affine one and one with its rows upside down fail.
+TEST(Cli, AnotherRenderersImageIsJudgedAgainstTheReference) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string scene = (dir / "sphere.glb").string(), ref = (dir / "sphere.reference.exr").string();
+  ASSERT_EQ(run("export sphere -o " + scene).exitCode, 0);
+  const CliRun described = run("scenes " + scene);
+  EXPECT_NE(described.output.find("attributes: normal (3), uv (2)"), std::string::npos) << described.output;
+  EXPECT_NE(described.output.find("camera: eye=(0,0.80000000000000004,2.7999999999999998) target=(0,0,0)"), std::string::npos)
+      << described.output;
+  ASSERT_EQ(run("render " + scene + " --backend reference -o " + ref).exitCode, 0);
+  // What another renderer writes: the ids, barycentrics, depth and attributes, rows from the top.
+  const auto theirs = [&](const std::string& options, bool flipRows) {
+    const std::string raw = (dir / "raw.exr").string(), out = (dir / "yours.exr").string();
+    EXPECT_EQ(run("render " + scene + " --no-diagnostics " + options + " -o " + raw).exitCode, 0);
+    const rc::Framebuffer full = rc::readExr(raw);
+    rc::Framebuffer kept(full.width(), full.height());
+    const int w = full.width(), h = full.height();
+    for (const rc::Channel& c : full.channels()) {
+      if (c.name == "R" || c.name == "G" || c.name == "B") continue;
+      EXPECT_TRUE(c.name.rfind("bound.", 0) != 0 && c.name != "edge.dist" && c.name != "depth.tie") << c.name;
+      const auto row = [&](int y) { return std::size_t(flipRows ? h - 1 - y : y) * std::size_t(w); };
+      if (c.type == rc::ChannelType::kUint) {
+        std::uint32_t* to = kept.addUint(c.name);
+        for (int y = 0; y < h; ++y) std::copy_n(&c.uints[row(y)], w, to + std::size_t(y) * w);
+      } else {
+        float* to = kept.addFloat(c.name);
+        for (int y = 0; y < h; ++y) std::copy_n(&c.floats[row(y)], w, to + std::size_t(y) * w);
+      }
+    }
+    rc::writeExr(kept, out);
+    return run("compare " + out + " " + ref);
+  };
+  const CliRun good = theirs("", false);
+  EXPECT_EQ(good.exitCode, 0) << good.output;
+  EXPECT_NE(good.output.find("0.0002"), std::string::npos) << "the fixed barycentric limit gates\n" << good.output;
+  const CliRun affine = theirs("--mode affine", false);
+  EXPECT_EQ(affine.exitCode, 1) << affine.output;
+  EXPECT_NE(affine.output.find("bary: max error"), std::string::npos) << affine.output;
+  const CliRun flipped = theirs("", true);
+  EXPECT_EQ(flipped.exitCode, 1) << flipped.output;
+  EXPECT_NE(flipped.output.find("different triangle at"), std::string::npos) << flipped.output;
+
+  // An image with fewer attributes than the reference: refused with the way out, which works.
+  const std::string uv = (dir / "uv.exr").string(), heat = (dir / "heat.exr").string();
+  ASSERT_EQ(run("render " + scene + " --attributes uv -o " + uv).exitCode, 0);
+  const CliRun refused = run("compare " + uv + " " + ref + " --heatmap " + heat);
+  EXPECT_EQ(refused.exitCode, 3) << refused.output;
+  EXPECT_NE(refused.output.find("channel attr.normal.x: missing (present in " + ref + "; --attributes compares only those named)"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_EQ(run("compare " + uv + " " + ref + " --attributes uv").exitCode, 0);
+  const CliRun typo = run("compare " + uv + " " + ref + " --attributes nromal --heatmap " + heat);
+  EXPECT_EQ(typo.exitCode, 2) << typo.output;
+  EXPECT_NE(typo.output.find("(they carry normal, uv)"), std::string::npos) << typo.output;
+  EXPECT_FALSE(fs::exists(heat));
+}
+
+// --max-attr as a user gives it: LIMIT for every attribute, NAME=LIMIT for one, repeated or
+// comma-separated; a name the scene or the images do not carry is refused before any work.
+TEST(Cli, MaxAttrGivesEveryAttributeOrOneByNameItsLimit) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string test = (dir / "t.exr").string(), ref = (dir / "r.exr").string(), json = (dir / "c.json").string();
+  ASSERT_EQ(run("render sphere --no-diagnostics -o " + test).exitCode, 0);
+  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
+  const std::string pair = "compare " + test + " " + ref + " ";
+  ASSERT_EQ(run(pair).exitCode, 0) << "the float rasterizer's attributes are within the default limit";
+
+  const CliRun everyOne = run(pair + "--max-attr 1e-9");
+  EXPECT_EQ(everyOne.exitCode, 1) << everyOne.output;
+  for (const char* family : {"attr.normal", "attr.uv"}) {
+    EXPECT_NE(everyOne.output.find(std::string(family) + ": max error "), std::string::npos) << everyOne.output;
+  }
+  EXPECT_NE(everyOne.output.find(" of range exceeds 1e-09"), std::string::npos) << "not 0.000000\n" << everyOne.output;
+
+  const CliRun normalOnly = run(pair + "--max-attr normal=1e-9 --json " + json);
+  EXPECT_EQ(normalOnly.exitCode, 1) << normalOnly.output;
+  EXPECT_NE(normalOnly.output.find("attr.normal: max error "), std::string::npos) << normalOnly.output;
+  EXPECT_EQ(normalOnly.output.find("attr.uv: max error "), std::string::npos) << normalOnly.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ(j["thresholds"]["attribute_by_name"], (nlohmann::json{{"normal", 1e-9}}));
+  EXPECT_EQ(j["families"]["attr.normal"]["threshold"], 1e-9);
+  EXPECT_EQ(j["families"]["attr.uv"]["threshold"], 1e-4);
+
+  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1,normal=1").exitCode, 0);
+  EXPECT_EQ(run(pair + "--max-attr 1e-9 --max-attr uv=1 --max-attr normal=1").exitCode, 0);
+  EXPECT_EQ(run(pair + "--max-attr 1e-9,uv=1").exitCode, 1);
+
+  const std::string heat = (dir / "heat.exr").string();
+  const CliRun typo = run(pair + "--max-attr nromal=1 --heatmap " + heat);
+  EXPECT_EQ(typo.exitCode, 2) << typo.output;
+  EXPECT_NE(typo.output.find("--max-attr nromal: neither " + test + " nor " + ref + " carries it (they carry normal, uv)"),
+            std::string::npos)
+      << typo.output;
+  EXPECT_FALSE(fs::exists(heat));
+
+  // check refuses before it renders anything.
+  const CliRun notCarried = run("check sphere floor --max-attr normal=1 --json " + json);
+  EXPECT_EQ(notCarried.exitCode, 2) << notCarried.output;
+  EXPECT_NE(notCarried.output.find("floor: --max-attr names 'normal', which the scene does not carry (it has: uv)"),
+            std::string::npos)
+      << notCarried.output;
+  EXPECT_EQ(notCarried.output.find("PASS"), std::string::npos) << notCarried.output;
+  const CliRun leftOut = run("check sphere --attributes uv --max-attr normal=1");
+  EXPECT_EQ(leftOut.exitCode, 2) << leftOut.output;
+  EXPECT_NE(leftOut.output.find("sphere: --max-attr names 'normal', which --attributes leaves out"), std::string::npos)
+      << leftOut.output;
+  const CliRun gated = run("check sphere cube --no-diagnostics --max-attr uv=1e-9 -q");
+  EXPECT_EQ(gated.exitCode, 1) << gated.output;
+  EXPECT_NE(gated.output.find("attr.uv: max error"), std::string::npos) << gated.output;
+  EXPECT_EQ(gated.output.find("attr.normal: max error"), std::string::npos) << gated.output;
+}
+
+}  // namespace
