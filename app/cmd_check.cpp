@@ -32,6 +32,7 @@ struct CheckArgs {
   bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
+  std::vector<std::string> givenLimits;  // the fixed limits given on the command line
   ExrCompression compression = ExrCompression::kZip;
 };
 
@@ -170,6 +171,10 @@ int runCheck(CheckArgs& args) {
   std::printf("(raster ms, ref ms: one cold render each, the reference's with its BVH build; "
               "rastercheck bench measures speed)\n");
   std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
+  std::fflush(stdout);
+  std::vector<const CompareReport*> reports;
+  for (const ReportScene& s : reportScenes) reports.push_back(&s.report);
+  noteUnappliedLimits(args.givenLimits, reports);
   if (!args.report.empty()) {
     outputs.write((fs::path(args.report) / "index.html").string(), [&](const std::string&) {
       writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
@@ -204,7 +209,10 @@ void registerCheck(CLI::App& root, Action& action) {
   addRenderOptions(command, args->settings);
   addThresholdOptions(command, args->thresholds);
   addExrCompressionOption(command, args->compression);
-  command->callback([args, &action] { action = [args] { return runCheck(*args); }; });
+  command->callback([args, command, &action] {
+    args->givenLimits = givenLimits(*command);
+    action = [args] { return runCheck(*args); };
+  });
 }
 
 }  // namespace rc::app

@@ -17,6 +17,7 @@ namespace {
 struct CompareArgs {
   std::string test, reference, heatmap, heatmapPng, json, junit;
   Thresholds thresholds;
+  std::vector<std::string> givenLimits;  // the fixed limits given on the command line
   ExrCompression compression = ExrCompression::kZip;
   int threads = 0;
 };
@@ -42,6 +43,8 @@ int runCompare(CompareArgs& args) {
                                              args.threads);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
+  std::fflush(stdout);
+  noteUnappliedLimits(args.givenLimits, {&report});
   WrittenOutputs outputs;
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path, args.compression); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });
@@ -75,7 +78,10 @@ void registerCompare(CLI::App& root, Action& action) {
                       "default: every one, each required in both")
       ->delimiter(',');
   addExrCompressionOption(command, args->compression);
-  command->callback([args, &action] { action = [args] { return runCompare(*args); }; });
+  command->callback([args, command, &action] {
+    args->givenLimits = givenLimits(*command);
+    action = [args] { return runCompare(*args); };
+  });
 }
 
 }  // namespace rc::app

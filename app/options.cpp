@@ -181,6 +181,45 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
                     "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }
 
+std::vector<std::string> givenLimits(const CLI::App& command) {
+  std::vector<std::string> given;
+  for (const char* name : {"--max-bary", "--max-depth", "--max-attr", "--max-disagreement", "--max-coverage"}) {
+    if (command.count(name) > 0) given.emplace_back(name);
+  }
+  return given;
+}
+
+void noteUnappliedLimits(const std::vector<std::string>& given, const std::vector<const CompareReport*>& reports) {
+  // Whether `limit` gated something in report r.
+  const auto applied = [](const std::string& limit, const CompareReport& r) {
+    if (limit == "--max-disagreement" || limit == "--max-coverage") return !r.explained;
+    for (const FamilyReport& f : r.families) {
+      const bool attribute = f.name != "bary" && f.name != "depth";
+      const bool mine = limit == "--max-bary" ? f.name == "bary" : limit == "--max-depth" ? f.name == "depth" : attribute;
+      if (mine && !f.bounded) return true;
+    }
+    return false;
+  };
+  std::string bounded, noAttribute;
+  for (const std::string& limit : given) {
+    if (std::any_of(reports.begin(), reports.end(), [&](const CompareReport* r) { return applied(limit, *r); })) continue;
+    const bool anyAttribute = std::any_of(reports.begin(), reports.end(), [](const CompareReport* r) {
+      return r->families.size() > 2;  // bary, depth, then the attributes
+    });
+    std::string& list = limit == "--max-attr" && !anyAttribute ? noAttribute : bounded;
+    list += (list.empty() ? "" : ", ") + limit;
+  }
+  if (!bounded.empty()) {
+    std::fprintf(stderr,
+                 "rastercheck: note: %s gated nothing: both images carry the bound channels, so each pixel is gated "
+                 "against its own bound and each disagreement must be explained (docs/compare.md)\n",
+                 bounded.c_str());
+  }
+  if (!noAttribute.empty()) {
+    std::fprintf(stderr, "rastercheck: note: --max-attr gated nothing: no attribute was compared\n");
+  }
+}
+
 void addExrCompressionOption(CLI::App* command, ExrCompression& compression) {
   addChoice<ExrCompression>(command, "--exr-compression", compression,
                             {{"zip", ExrCompression::kZip}, {"piz", ExrCompression::kPiz},

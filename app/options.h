@@ -69,6 +69,13 @@ void addRenderOptions(CLI::App* command, RenderSettings& settings);
 // addRenderOptions includes; for commands that render nothing.
 void addSceneOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
+// The fixed limits (--max-bary, --max-depth, --max-attr, --max-disagreement, --max-coverage)
+// given on `command`'s line.
+std::vector<std::string> givenLimits(const CLI::App& command);
+// Says on stderr which of the `given` limits gated nothing in any of `reports`: the images carry
+// the bound channels (the bounds gate those families, and the disagreements are explained), or
+// no attribute was compared. A limit the user set is never left unused in silence.
+void noteUnappliedLimits(const std::vector<std::string>& given, const std::vector<const CompareReport*>& reports);
 // --exr-compression, for the commands that write EXR files.
 void addExrCompressionOption(CLI::App* command, ExrCompression& compression);
 // --threads N, 0..256 (0 = all cores); `what` says what the threads do.

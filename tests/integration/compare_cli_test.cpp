@@ -245,4 +245,55 @@ TEST(Cli, MaxAttrGivesEveryAttributeOrOneByNameItsLimit) {
   EXPECT_EQ(gated.output.find("attr.normal: max error"), std::string::npos) << gated.output;
 }
 
+
+// A fixed limit the user gives that gates nothing is said on stderr: the images carry the bound
+// channels, which gate instead, or no attribute is compared; a limit that gates says nothing.
+TEST(Cli, ALimitThatGatesNothingIsNoted) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string full = (dir / "full.exr").string(), bare = (dir / "bare.exr").string(),
+                    ref = (dir / "r.exr").string();
+  ASSERT_EQ(run("render sphere -o " + full).exitCode, 0);
+  ASSERT_EQ(run("render sphere --no-diagnostics -o " + bare).exitCode, 0);
+  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
+  const std::string note = "rastercheck: note: ";
+  const CliRun bounded = run("compare " + full + " " + ref + " --max-bary 0 --max-coverage 1");
+  EXPECT_EQ(bounded.exitCode, 0) << bounded.output;
+  EXPECT_NE(bounded.output.find(note + "--max-bary, --max-coverage gated nothing: both images carry the bound channels"),
+            std::string::npos)
+      << bounded.output;
+  const CliRun applied = run("compare " + bare + " " + ref + " --max-bary 1 --max-attr uv=1 --max-coverage 1");
+  EXPECT_EQ(applied.exitCode, 0) << applied.output;
+  EXPECT_EQ(applied.output.find(note), std::string::npos) << applied.output;
+  const CliRun defaults = run("compare " + full + " " + ref);
+  EXPECT_EQ(defaults.output.find(note), std::string::npos) << "nothing was given\n" << defaults.output;
+
+  const CliRun check = run("check sphere cube --max-depth 1 -q");
+  EXPECT_EQ(check.exitCode, 0) << check.output;
+  EXPECT_NE(check.output.find(note + "--max-depth gated nothing"), std::string::npos) << check.output;
+  const CliRun checkBare = run("check sphere cube --max-depth 1 -q --no-diagnostics");
+  EXPECT_EQ(checkBare.exitCode, 0) << checkBare.output;
+  EXPECT_EQ(checkBare.output.find(note), std::string::npos) << checkBare.output;
+
+  // Images without attributes: --max-attr has nothing to gate.
+  for (const std::string& path : {bare, ref}) {
+    const rc::Framebuffer all = rc::readExr(path);
+    rc::Framebuffer kept(all.width(), all.height());
+    for (const rc::Channel& c : all.channels()) {
+      if (c.name.rfind("attr.", 0) == 0 || c.name.rfind("bound.", 0) == 0 || c.name == "edge.dist") continue;
+      if (c.type == rc::ChannelType::kUint) {
+        std::copy(c.uints.begin(), c.uints.end(), kept.addUint(c.name));
+      } else {
+        std::copy(c.floats.begin(), c.floats.end(), kept.addFloat(c.name));
+      }
+    }
+    rc::writeExr(kept, path);
+  }
+  const CliRun noAttribute = run("compare " + bare + " " + ref + " --max-attr 1e-4 --max-bary 1");
+  EXPECT_EQ(noAttribute.exitCode, 0) << noAttribute.output;
+  EXPECT_NE(noAttribute.output.find(note + "--max-attr gated nothing: no attribute was compared"), std::string::npos)
+      << noAttribute.output;
+  EXPECT_EQ(noAttribute.output.find("--max-bary"), std::string::npos) << noAttribute.output;
+}
+
 }  // namespace
