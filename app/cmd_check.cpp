@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <set>
+#include <utility>
 
 #include "app/bench.h"
 #include "app/check.h"
@@ -67,20 +68,23 @@ std::string settingsLine(const RenderSettings& s) {
          std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck " RASTERCHECK_VERSION;
 }
 
-// Every attribute --max-attr names must be one the scene's renders carry: a name that gates
-// nothing is a typo, refused before any scene is rendered.
+// Every attribute --max-attr or --warn-attr names must be one the scene's renders carry: a name
+// that gates nothing is a typo, refused before any scene is rendered.
 void requireAttributeLimitsApply(const Scene& scene, const std::string& spec, const Thresholds& thresholds,
                                  const RenderSettings& settings) {
-  for (const auto& [name, limit] : thresholds.attributeByName) {
-    const auto& chosen = settings.attributes;
-    if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), name) == chosen.end()) {
-      throw usageError(spec + ": --max-attr names '" + name + "', which --attributes leaves out");
+  for (const auto& [option, limits] : {std::pair{"--max-attr", &thresholds.attributeByName},
+                                       std::pair{"--warn-attr", &thresholds.warn.attributeByName}}) {
+    for (const auto& [name, limit] : *limits) {
+      const auto& chosen = settings.attributes;
+      const std::string names = spec + ": " + option + " names '" + name + "', which ";
+      if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), name) == chosen.end()) {
+        throw usageError(names + "--attributes leaves out");
+      }
+      if (scene.mesh.findAttribute(name)) continue;
+      std::string carried;
+      for (const Attribute& a : scene.mesh.attributes) carried += (carried.empty() ? "" : ", ") + a.name;
+      throw usageError(names + "the scene does not carry (it has: " + (carried.empty() ? "none" : carried) + ")");
     }
-    if (scene.mesh.findAttribute(name)) continue;
-    std::string carried;
-    for (const Attribute& a : scene.mesh.attributes) carried += (carried.empty() ? "" : ", ") + a.name;
-    throw usageError(spec + ": --max-attr names '" + name + "', which the scene does not carry (it has: " +
-                     (carried.empty() ? "none" : carried) + ")");
   }
 }
 
@@ -123,6 +127,7 @@ int runCheck(CheckArgs& args) {
   std::vector<JUnitCase> junitCases;
   std::set<std::string> stems;
   bool allPass = true;
+  std::size_t warned = 0;  // scenes with a warning
   for (const Scene& scene : scenes) {
     progress.step(scene.name + ": rasterizer, reference, compare");
     const long long started = nowNanoseconds();
@@ -136,6 +141,8 @@ int runCheck(CheckArgs& args) {
                 formatNumber(depth.max).c_str(), formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs,
                 r.referenceMs);
     for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
+    for (const std::string& warning : r.report.warnings) std::printf("    warning: %s\n", warning.c_str());
+    warned += !r.report.warnings.empty();
     if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
     std::fflush(stdout);
     const std::string stem = fileStem(scene.name, stems);
@@ -165,12 +172,14 @@ int runCheck(CheckArgs& args) {
     rows.push_back(row);
     junitCases.push_back({scene.name, seconds, r.report.reasons,
                           std::to_string(r.triangles) + " triangles, " + gateFigures(r.report) + "; raster " +
-                              formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms"});
+                              formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms",
+                          r.report.warnings});
   }
   // The two times are for orientation; say so, so that nobody reads them as the speed-up.
   std::printf("(raster ms, ref ms: one cold render each, the reference's with its BVH build; "
               "rastercheck bench measures speed)\n");
-  std::printf("%zu scene(s): %s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED");
+  std::printf("%zu scene(s): %s%s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED",
+              warned == 0 ? "" : ("; " + std::to_string(warned) + " with warnings").c_str());
   std::fflush(stdout);
   std::vector<const CompareReport*> reports;
   for (const ReportScene& s : reportScenes) reports.push_back(&s.report);

@@ -51,7 +51,7 @@ int runCompare(CompareArgs& args) {
   outputs.writeText(args.json, jsonDocument(reportToJson(report)));
   if (!args.junit.empty()) {
     outputs.writeText(args.junit, junitXml("rastercheck compare", {{"reference", args.reference}},
-                                           {{args.test, millisecondsSince(started) * 1e-3, report.reasons, gateFigures(report)}}));
+                                           {{args.test, millisecondsSince(started) * 1e-3, report.reasons, gateFigures(report), report.warnings}}));
   }
   outputs.keep();
   return report.pass ? 0 : 1;

@@ -52,6 +52,7 @@ h1 { margin-bottom: 4px; }
 .summary { font-size: 1.2em; margin: 8px 0 20px; }
 .pass { color: #fff; background: #2e7d32; padding: 2px 8px; border-radius: 4px; }
 .fail { color: #fff; background: #c62828; padding: 2px 8px; border-radius: 4px; }
+.warnings { color: #8a5a00; }
 .scene { background: #fff; border: 1px solid #ddd; border-radius: 6px; padding: 12px 16px; margin-bottom: 20px; }
 .images { display: flex; gap: 12px; flex-wrap: wrap; }
 figure { margin: 0; }
@@ -75,6 +76,11 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   } else {
     html << "<ul>\n";
     for (const std::string& reason : r.reasons) html << "<li>" << escapeMarkup(reason) << "</li>\n";
+    html << "</ul>\n";
+  }
+  if (!r.warnings.empty()) {
+    html << "<ul class=\"warnings\">\n";
+    for (const std::string& warning : r.warnings) html << "<li>warning: " << escapeMarkup(warning) << "</li>\n";
     html << "</ul>\n";
   }
   html << "<div class=\"images\">\n";

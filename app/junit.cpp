@@ -58,7 +58,9 @@ std::string junitXml(const std::string& suite, const std::vector<std::pair<std::
       xml << "      <failure type=\"accuracy gate\" message=\"" << escapeMarkup(c.reasons.front()) << "\">"
           << escapeMarkup(all) << "</failure>\n";
     }
-    xml << "      <system-out>" << escapeMarkup(c.summary) << "</system-out>\n    </testcase>\n";
+    std::string out = c.summary;
+    for (const std::string& warning : c.warnings) out += "\nwarning: " + warning;
+    xml << "      <system-out>" << escapeMarkup(out) << "</system-out>\n    </testcase>\n";
   }
   xml << "  </testsuite>\n</testsuites>\n";
   return xml.str();

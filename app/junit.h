@@ -18,8 +18,9 @@ std::string gateFigures(const CompareReport& report);
 struct JUnitCase {
   std::string name;                  // the scene as named on the command line
   double seconds = 0;                // what checking it took, rendering both paths and comparing
-  std::vector<std::string> reasons;  // why it failed the gate; empty when it passed
-  std::string summary;               // its figures, one line, shown as the case's output
+  std::vector<std::string> reasons;   // why it failed the gate; empty when it passed
+  std::string summary;                // its figures, one line, shown as the case's output
+  std::vector<std::string> warnings;  // warning limits exceeded, added to the output
 };
 
 // The document: a <testsuites> with one <testsuite> named `suite`, its `properties` (name,

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string_view>
 
@@ -61,23 +62,42 @@ const CLI::Validator kAttributeLimit(
     },
     "");
 
-// --max-attr's items, each already checked: a bare limit sets every attribute's, NAME=LIMIT one
-// attribute's. Naming an attribute twice, or giving two bare limits, is refused: which was meant?
-void setAttributeLimits(const std::vector<std::string>& items, Thresholds& t) {
+// --max-attr's or --warn-attr's items, each already checked: a bare limit sets every
+// attribute's (`every`, a double or an optional one), NAME=LIMIT one attribute's. Naming an
+// attribute twice, or giving two bare limits, is refused: which was meant?
+template <typename Every>
+void setAttributeLimits(const char* option, const std::vector<std::string>& items, Every& every,
+                        std::map<std::string, double>& byName) {
   bool bare = false;
   for (const std::string& item : items) {
     const std::size_t equals = item.find('=');
     if (equals == std::string::npos) {
-      if (bare) throw CLI::ValidationError("--max-attr", "two limits for every attribute; give one");
+      if (bare) throw CLI::ValidationError(option, "two limits for every attribute; give one");
       bare = true;
-      t.attribute = *finiteNonNegative(item);
+      every = *finiteNonNegative(item);
       continue;
     }
     const std::string name = item.substr(0, equals);
-    if (!t.attributeByName.emplace(name, *finiteNonNegative(std::string_view(item).substr(equals + 1))).second) {
-      throw CLI::ValidationError("--max-attr", "attribute " + name + " given two limits; give one");
+    if (!byName.emplace(name, *finiteNonNegative(std::string_view(item).substr(equals + 1))).second) {
+      throw CLI::ValidationError(option, "attribute " + name + " given two limits; give one");
     }
   }
+}
+
+// --max-attr or --warn-attr: LIMIT or NAME=LIMIT, comma-separated or repeated.
+template <typename Every>
+void addAttributeLimitOption(CLI::App* command, const char* option, Every& every, std::map<std::string, double>& byName,
+                             const std::string& help) {
+  command
+      ->add_option_function<std::vector<std::string>>(
+          option,
+          [option, &every, &byName](const std::vector<std::string>& items) {
+            setAttributeLimits(option, items, every, byName);
+          },
+          help)
+      ->delimiter(',')
+      ->check(kAttributeLimit)
+      ->type_name("LIMIT|NAME=LIMIT");
 }
 
 }  // namespace
@@ -163,20 +183,30 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-depth", t.depth, "gate without bound channels: max depth error (relative)")
       ->check(kFiniteNonNegative)->capture_default_str();
-  command
-      ->add_option_function<std::vector<std::string>>(
-          "--max-attr", [&t](const std::vector<std::string>& items) { setAttributeLimits(items, t); },
-          "gate without bound channels: max attribute error, as a fraction of its range; LIMIT for every attribute, "
-          "NAME=LIMIT for one (e.g. 1e-4,color=4e-3); default 0.0001")
-      ->delimiter(',')
-      ->check(kAttributeLimit)
-      ->type_name("LIMIT|NAME=LIMIT");
+  addAttributeLimitOption(command, "--max-attr", t.attribute, t.attributeByName,
+                          "gate without bound channels: max attribute error, as a fraction of its range; LIMIT for "
+                          "every attribute, NAME=LIMIT for one (e.g. 1e-4,color=4e-3); default 0.0001");
   command->add_option("--max-disagreement", t.disagreement,
                       "gate without edge.dist channels: max fraction of covered pixels where the triangle differs")
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-coverage", t.coverage,
                       "gate without edge.dist channels: max fraction of covered pixels covered by one image only")
       ->check(kFiniteNonNegative)->capture_default_str();
+  // Warning limits: the same values in the same units, whatever gates them; never fail.
+  const std::string warns = "warn (exit 0) when ";
+  command->add_option("--warn-bary", t.warn.bary, warns + "the max barycentric error (absolute) exceeds this")
+      ->check(kFiniteNonNegative);
+  command->add_option("--warn-depth", t.warn.depth, warns + "the max depth error (relative) exceeds this")
+      ->check(kFiniteNonNegative);
+  addAttributeLimitOption(command, "--warn-attr", t.warn.attribute, t.warn.attributeByName,
+                          warns + "an attribute's max error, as a fraction of its range, exceeds this; LIMIT for "
+                                  "every attribute, NAME=LIMIT for one");
+  command->add_option("--warn-disagreement", t.warn.disagreement,
+                      warns + "the fraction of covered pixels where the triangle differs exceeds this")
+      ->check(kFiniteNonNegative);
+  command->add_option("--warn-coverage", t.warn.coverage,
+                      warns + "the fraction of covered pixels covered by one image only exceeds this")
+      ->check(kFiniteNonNegative);
   command->add_flag("--allow-empty", t.allowEmpty,
                     "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }

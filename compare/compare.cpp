@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <string_view>
+#include <utility>
 
 #include "compare/colormap.h"
 #include "core/channels.h"
@@ -61,6 +63,35 @@ std::string overLimit(double value, double limit, const char* joint) {
     if (std::string_view(a) != b) break;
   }
   return std::string(a) + joint + b;
+}
+
+// The warning limits a report's measured values exceed (Thresholds::warn).
+std::vector<std::string> warningsOf(const CompareReport& r, const Thresholds::Warnings& w) {
+  std::vector<std::string> warnings;
+  const std::string_view prefix = channels::kAttributePrefix;
+  for (const FamilyReport& f : r.families) {
+    std::optional<double> limit = f.name == "bary" ? w.bary : f.name == "depth" ? w.depth : w.attribute;
+    const bool attribute = f.name != "bary" && f.name != "depth";
+    if (attribute) {
+      const auto own = w.attributeByName.find(f.name.substr(prefix.size()));
+      if (own != w.attributeByName.end()) limit = own->second;
+    }
+    const bool ofRange = attribute && f.range > 0.0;
+    const double value = ofRange ? f.stats.max / f.range : f.stats.max;
+    if (limit && !(value <= *limit)) {
+      warnings.push_back(f.name + ": max error " +
+                         overLimit(value, *limit, ofRange ? " of range exceeds the warning limit " : " exceeds the warning limit "));
+    }
+  }
+  if (w.disagreement && !(r.disagreementFraction <= *w.disagreement)) {
+    warnings.push_back("different triangle at " +
+                       overLimit(r.disagreementFraction, *w.disagreement, " of covered pixels, warning limit "));
+  }
+  if (w.coverage && !(r.coverageFraction <= *w.coverage)) {
+    warnings.push_back("one-side-only coverage at " +
+                       overLimit(r.coverageFraction, *w.coverage, " of covered pixels, warning limit "));
+  }
+  return warnings;
 }
 
 const Channel& require(const Framebuffer& fb, const std::string& path, const std::string& name,
@@ -138,6 +169,7 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
                      (carried.empty() ? std::string(" (they carry no attributes)") : " (they carry " + carried + ")"));
   };
   for (const auto& [name, limit] : thresholds.attributeByName) requireCarried("--max-attr", name);
+  for (const auto& [name, limit] : thresholds.warn.attributeByName) requireCarried("--warn-attr", name);
   if (!selection.empty()) {
     std::map<std::string, std::vector<std::string>> chosen;
     for (const std::string& name : selection) {
@@ -148,9 +180,12 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
       if (chosen.count(entry.first) == 0) leftOut.push_back(entry.first);
     }
     // A limit for a family --attributes leaves out would gate nothing: say so.
-    for (const auto& [name, limit] : thresholds.attributeByName) {
-      if (chosen.count(prefix + name) == 0) {
-        throw usageError("--max-attr " + name + ": --attributes leaves it out, so it is not compared");
+    for (const auto& [option, limits] : {std::pair{"--max-attr", &thresholds.attributeByName},
+                                         std::pair{"--warn-attr", &thresholds.warn.attributeByName}}) {
+      for (const auto& [name, limit] : *limits) {
+        if (chosen.count(prefix + name) == 0) {
+          throw usageError(std::string(option) + " " + name + ": --attributes leaves it out, so it is not compared");
+        }
       }
     }
     attributes = std::move(chosen);
@@ -401,6 +436,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     }
   }
   report.pass = report.reasons.empty();
+  report.warnings = warningsOf(report, thresholds.warn);
 
   if (heatmap) {
     std::uint32_t* classPlane = heatmap->addUint("class.id");

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,15 @@ struct Thresholds {
     const auto it = attributeByName.find(name);
     return it == attributeByName.end() ? attribute : it->second;
   }
+
+  // Warning limits (--warn-*), on the measured values whatever gates them (the bounds or the
+  // limits above), in the same units: a value beyond one is a warning, printed and reported,
+  // which never fails the gate. Unset: no warning. For a CI that wants to hear of an error
+  // that grew but still passes.
+  struct Warnings {
+    std::optional<double> bary, depth, attribute, disagreement, coverage;
+    std::map<std::string, double> attributeByName = {};  // as attributeByName above
+  } warn = {};
 };
 
 struct FamilyReport {
@@ -96,7 +106,8 @@ struct CompareReport {
   std::vector<std::string> leftOut;  // attribute families an image carries that --attributes left out
   Thresholds thresholds;
   bool pass = false;
-  std::vector<std::string> reasons;  // why it failed; empty when it passed
+  std::vector<std::string> reasons;   // why it failed; empty when it passed
+  std::vector<std::string> warnings;  // the warning limits exceeded (Thresholds::warn); never fail
 };
 
 // Throws badInput (naming the file and channel) when the images are not comparable: sizes

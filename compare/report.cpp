@@ -36,6 +36,7 @@ nlohmann::json reportToJson(const CompareReport& r) {
   j["format_version"] = kReportFormatVersion;
   j["verdict"] = r.pass ? "pass" : "fail";
   j["reasons"] = r.reasons;
+  j["warnings"] = r.warnings;
   j["test"] = r.testPath;
   j["reference"] = r.referencePath;
   j["width"] = r.width;
@@ -63,6 +64,14 @@ nlohmann::json reportToJson(const CompareReport& r) {
                      {"allow_empty", r.thresholds.allowEmpty},
                      {"attributes", r.thresholds.attributes},
                      {"attribute_by_name", r.thresholds.attributeByName}};
+  const Thresholds::Warnings& w = r.thresholds.warn;
+  const auto limit = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  j["thresholds"]["warn"] = {{"bary", limit(w.bary)},
+                             {"depth", limit(w.depth)},
+                             {"attribute", limit(w.attribute)},
+                             {"disagreement", limit(w.disagreement)},
+                             {"coverage", limit(w.coverage)},
+                             {"attribute_by_name", w.attributeByName}};
   j["left_out"] = r.leftOut;
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {
@@ -130,6 +139,7 @@ std::string reportToTable(const CompareReport& r) {
   }
   out << "verdict: " << (r.pass ? "PASS" : "FAIL") << "\n";
   for (const std::string& reason : r.reasons) out << "  - " << reason << "\n";
+  for (const std::string& warning : r.warnings) out << "warning: " << warning << "\n";
   return out.str();
 }
 

@@ -262,6 +262,52 @@ TEST(Compare, EachAttributeMayHaveItsOwnLimit) {
   EXPECT_EQ(message, "--max-attr uv: --attributes leaves it out, so it is not compared");
 }
 
+// --warn-*: a value beyond a warning limit is a warning, in the report and its JSON, and never
+// fails the gate; a value at the limit is within it; unset limits warn of nothing.
+TEST(Compare, WarningLimitsWarnWithoutFailing) {
+  Framebuffer test = image();
+  at(test, channels::kBary[0], 3, 4) = 0.25f + 0x1p-10f;
+  at(test, channels::kDepth, 6, 7) = 4.0f + 0x1p-10f;  // relative 2^-12
+  at(test, channels::attributeChannel("uv", 1), 2, 2) = 2.5f;  // 0.5 of 9
+  idAt(test, 0, 0) = 2;  // one different triangle of 100 covered pixels
+  Thresholds t{1.0, 1.0, 1.0, 1.0, 1.0};
+  const auto warned = [&] { return compareImages(test, "t.exr", image(), "r.exr", t, nullptr); };
+  EXPECT_TRUE(warned().warnings.empty());
+  EXPECT_EQ(reportToJson(warned())["thresholds"]["warn"]["bary"], nullptr);
+
+  t.warn.bary = 0x1p-11;
+  t.warn.depth = 0x1p-12;  // exactly the error: within
+  t.warn.attribute = 0.05;
+  t.warn.disagreement = 0.005;
+  t.warn.coverage = 0.0;
+  const CompareReport r = warned();
+  EXPECT_TRUE(r.pass);
+  EXPECT_TRUE(r.reasons.empty());
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{"bary: max error 0.000977 exceeds the warning limit 0.000488",
+                                                  "attr.uv: max error 0.0556 of range exceeds the warning limit 0.05",
+                                                  "different triangle at 0.01 of covered pixels, warning limit 0.005"}));
+  const nlohmann::json j = reportToJson(r);
+  EXPECT_EQ(j["verdict"], "pass");
+  EXPECT_EQ(j["warnings"].size(), 3u);
+  EXPECT_EQ(j["thresholds"]["warn"]["depth"], 0x1p-12);
+  EXPECT_NE(reportToTable(r).find("verdict: PASS\nwarning: bary: max error 0.000977"), std::string::npos) << reportToTable(r);
+
+  t.warn.attributeByName = {{"uv", 0.06}};
+  EXPECT_EQ(warned().warnings.size(), 2u);
+  t.warn.attributeByName = {{"uvw", 0.06}};
+  std::string message;
+  EXPECT_EQ(incompatibility(test, image(), &message, t), int(ExitCode::kUsage));
+  EXPECT_EQ(message, "--warn-attr uvw: neither test.exr nor ref.exr carries it (they carry uv)");
+
+  // A failing gate keeps its warnings apart from its reasons.
+  t.warn.attributeByName.clear();
+  t.bary = 0.0;
+  const CompareReport failed = warned();
+  EXPECT_FALSE(failed.pass);
+  EXPECT_EQ(failed.reasons, (std::vector<std::string>{"bary: max error 0.000977 exceeds 0"}));
+  EXPECT_EQ(failed.warnings.size(), 3u);
+}
+
 TEST(Compare, HeatmapHasErrorAndClassChannels) {
   Framebuffer test = image();
   at(test, channels::kBary[0], 3, 4) = 0.3f;

@@ -447,7 +447,9 @@ TEST(BadInput, Options) {
                            "render cube --backend gpu -o x.exr",
                            // --max-attr: LIMIT or NAME=LIMIT, each once
                            "check --max-attr uv", "check --max-attr =1", "check --max-attr uv=", "check --max-attr uv=-1",
-                           "check --max-attr uv=nan", "check --max-attr 1,2", "compare a.exr b.exr --max-attr uv=1,uv=2"}) {
+                           "check --max-attr uv=nan", "check --max-attr 1,2", "compare a.exr b.exr --max-attr uv=1,uv=2",
+                           "check --warn-bary -1", "check --warn-depth nan", "check --warn-attr uv=x",
+                           "compare a.exr b.exr --warn-coverage"}) {
     const Outcome r = rastercheck(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
   }

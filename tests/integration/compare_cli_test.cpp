@@ -296,4 +296,35 @@ TEST(Cli, ALimitThatGatesNothingIsNoted) {
   EXPECT_EQ(noAttribute.output.find("--max-bary"), std::string::npos) << noAttribute.output;
 }
 
+
+// --warn-*: printed, in the JSON, the JUnit output and the HTML report, and never a failure.
+TEST(Cli, WarningLimitsArePrintedAndNeverFail) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const std::string full = (dir / "full.exr").string(), ref = (dir / "r.exr").string();
+  ASSERT_EQ(run("render sphere -o " + full).exitCode, 0);
+  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
+  const CliRun compared = run("compare " + full + " " + ref + " --warn-bary 0 --warn-attr 1,normal=0");
+  EXPECT_EQ(compared.exitCode, 0) << compared.output;
+  EXPECT_NE(compared.output.find("verdict: PASS\nwarning: bary: max error "), std::string::npos) << compared.output;
+  EXPECT_NE(compared.output.find("warning: attr.normal: max error "), std::string::npos) << compared.output;
+  EXPECT_EQ(compared.output.find("warning: attr.uv"), std::string::npos) << compared.output;
+  EXPECT_EQ(run("compare " + full + " " + ref + " --warn-bary 1").output.find("warning:"), std::string::npos);
+
+  const std::string junit = (dir / "j.xml").string(), report = (dir / "report").string();
+  const CliRun checked = run("check sphere cube --warn-depth 0 -q --junit " + junit + " --report " + report);
+  EXPECT_EQ(checked.exitCode, 0) << checked.output;
+  EXPECT_NE(checked.output.find("    warning: depth: max error "), std::string::npos) << checked.output;
+  EXPECT_NE(checked.output.find("2 scene(s): all pass; 2 with warnings\n"), std::string::npos) << checked.output;
+  const std::string xml = rc::testing::readFile(junit), html = rc::testing::readFile((fs::path(report) / "index.html").string());
+  EXPECT_EQ(xml.find("<failure"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("\nwarning: depth: max error "), std::string::npos) << xml;
+  EXPECT_NE(html.find("<li>warning: depth: max error "), std::string::npos);
+  const CliRun typo = run("check sphere cube --warn-attr normal=1 -q");
+  EXPECT_EQ(typo.exitCode, 2) << typo.output;
+  EXPECT_NE(typo.output.find("cube: --warn-attr names 'normal', which the scene does not carry (it has: uv)"),
+            std::string::npos)
+      << typo.output;
+}
+
 }  // namespace
