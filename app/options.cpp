@@ -27,19 +27,6 @@ namespace rc::app {
 namespace fs = std::filesystem;
 namespace {
 
-// CLI11's NonNegativeNumber lets NaN through (NaN < 0 is false); this one does not.
-const CLI::Validator kFiniteNonNegative(
-    [](std::string& text) -> std::string {
-      double value = 0.0;
-      auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-      if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
-          value < 0.0) {
-        return "must be a finite number >= 0, got '" + text + "'";
-      }
-      return {};
-    },
-    "FINITE>=0");
-
 // A finite number >= 0 in all of `text`, or nothing.
 std::optional<double> finiteNonNegative(std::string_view text) {
   double value = 0.0;
@@ -48,7 +35,14 @@ std::optional<double> finiteNonNegative(std::string_view text) {
   return value;
 }
 
-// One item of --max-attr: LIMIT (every attribute) or NAME=LIMIT (attribute NAME).
+// CLI11's NonNegativeNumber lets NaN through (NaN < 0 is false); this one does not.
+const CLI::Validator kFiniteNonNegative(
+    [](std::string& text) -> std::string {
+      return finiteNonNegative(text) ? "" : "must be a finite number >= 0, got '" + text + "'";
+    },
+    "FINITE>=0");
+
+// One item of --max-attr or --warn-attr: LIMIT (every attribute) or NAME=LIMIT (attribute NAME).
 const CLI::Validator kAttributeLimit(
     [](std::string& text) -> std::string {
       const std::size_t equals = text.find('=');
