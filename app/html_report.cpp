@@ -151,8 +151,11 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
 
 void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& scenes, const std::string& settings,
                      const BenchResults& bench) {
-  std::size_t failed = 0;
-  for (const ReportScene& s : scenes) failed += s.report.pass ? 0 : 1;
+  std::size_t failed = 0, warned = 0;
+  for (const ReportScene& s : scenes) {
+    failed += s.report.pass ? 0 : 1;
+    warned += s.report.warnings.empty() ? 0 : 1;
+  }
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<title>rastercheck report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n"
@@ -160,6 +163,7 @@ void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& sce
        << (failed ? "FAIL" : "PASS") << "</span> "
        << (failed ? std::to_string(failed) + " of " + std::to_string(scenes.size()) + " scenes fail the gate"
                   : "all " + std::to_string(scenes.size()) + " scenes pass the gate")
+       << (warned ? "; " + std::to_string(warned) + " with warnings" : std::string())
        << "</p>\n<p class=\"settings\">" << escapeMarkup(settings) << "</p>\n"
        << "<p class=\"settings\">Heatmaps: barycentric error on a log10 magma scale from 1e-8 (dark) to 1e-1 "
        << "(bright); green: different triangle; cyan: covered by one side only; magenta: NaN or Inf; grey: "

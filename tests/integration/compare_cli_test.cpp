@@ -320,6 +320,7 @@ TEST(Cli, WarningLimitsArePrintedAndNeverFail) {
   EXPECT_EQ(xml.find("<failure"), std::string::npos) << xml;
   EXPECT_NE(xml.find("\nwarning: depth: max error "), std::string::npos) << xml;
   EXPECT_NE(html.find("<li>warning: depth: max error "), std::string::npos);
+  EXPECT_NE(html.find("all 2 scenes pass the gate; 2 with warnings</p>"), std::string::npos);
   const CliRun typo = run("check sphere cube --warn-attr normal=1 -q");
   EXPECT_EQ(typo.exitCode, 2) << typo.output;
   EXPECT_NE(typo.output.find("cube: --warn-attr names 'normal', which the scene does not carry (it has: uv)"),
