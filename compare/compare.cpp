@@ -65,15 +65,19 @@ std::string overLimit(double value, double limit, const char* joint) {
   return std::string(a) + joint + b;
 }
 
+// "uv" of the attribute family "attr.uv" (collectFamilies refuses a channel without a name).
+std::string attributeName(const std::string& family) {
+  return family.substr(std::string_view(channels::kAttributePrefix).size());
+}
+
 // The warning limits a report's measured values exceed (Thresholds::warn).
 std::vector<std::string> warningsOf(const CompareReport& r, const Thresholds::Warnings& w) {
   std::vector<std::string> warnings;
-  const std::string_view prefix = channels::kAttributePrefix;
   for (const FamilyReport& f : r.families) {
     std::optional<double> limit = f.name == "bary" ? w.bary : f.name == "depth" ? w.depth : w.attribute;
     const bool attribute = f.name != "bary" && f.name != "depth";
     if (attribute) {
-      const auto own = w.attributeByName.find(f.name.substr(prefix.size()));
+      const auto own = w.attributeByName.find(attributeName(f.name));
       if (own != w.attributeByName.end()) limit = own->second;
     }
     const bool ofRange = attribute && f.range > 0.0;
@@ -152,10 +156,15 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
   // Attribute channels: the union over both images, each required in both.
   std::map<std::string, std::vector<std::string>> attributes;  // family -> channel names
   const std::string prefix = channels::kAttributePrefix;
-  for (const Framebuffer* fb : {&test, &ref}) {
+  for (const auto& [fb, path] : {std::pair{&test, &testPath}, std::pair{&ref, &refPath}}) {
     for (const Channel& c : fb->channels()) {
       if (c.name.rfind(prefix, 0) != 0) continue;
-      const std::string family = c.name.substr(0, c.name.rfind('.'));
+      // attr.NAME.COMPONENT: a name, not empty, before the last dot (attr.x has none).
+      const std::size_t dot = c.name.rfind('.');
+      if (dot <= prefix.size()) {
+        throw badInput(*path + ": channel " + c.name, "names no attribute (attribute channels are attr.NAME.x, .y, .z, .w)");
+      }
+      const std::string family = c.name.substr(0, dot);
       auto& names = attributes[family];
       if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
     }
@@ -365,7 +374,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     fr.threshold = bounded                     ? 1.0
                    : f.kind == Family::kBary   ? thresholds.bary
                    : f.kind == Family::kDepth  ? thresholds.depth
-                                               : thresholds.attributeLimit(f.name.substr(std::string_view(channels::kAttributePrefix).size()));
+                                               : thresholds.attributeLimit(attributeName(f.name));
     fr.gated = bounded ? fr.ratio.max : fr.stats.max;
     if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
   });

@@ -165,6 +165,16 @@ TEST(Compare, IncompatibleImagesAreRefusedNamingFileAndChannel) {
   EXPECT_EQ(incompatibility(image(), noUv, &message), int(ExitCode::kBadInput));
   EXPECT_NE(message.find("ref.exr: channel attr.uv.x"), std::string::npos) << message;
 
+  // An attribute channel without a name (found by fuzz_exr_pair: attr.x made a family "attr",
+  // which the per-attribute limits then cut past its end).
+  for (const char* nameless : {"attr.x", "attr..x", "attr."}) {
+    Framebuffer odd = image();
+    odd.addFloat(nameless);
+    EXPECT_EQ(incompatibility(image(), odd, &message), int(ExitCode::kBadInput)) << nameless;
+    EXPECT_EQ(message, std::string("ref.exr: channel ") + nameless +
+                           ": names no attribute (attribute channels are attr.NAME.x, .y, .z, .w)");
+  }
+
   Framebuffer floatIds(kW, kH);
   floatIds.addFloat(channels::kTriangleId);
   EXPECT_EQ(incompatibility(floatIds, image(), &message), int(ExitCode::kBadInput));
