@@ -218,18 +218,17 @@ void noteUnappliedLimits(const std::vector<std::string>& given, const std::vecto
   const auto applied = [](const std::string& limit, const CompareReport& r) {
     if (limit == "--max-disagreement" || limit == "--max-coverage") return !r.explained;
     for (const FamilyReport& f : r.families) {
-      const bool attribute = f.name != "bary" && f.name != "depth";
-      const bool mine = limit == "--max-bary" ? f.name == "bary" : limit == "--max-depth" ? f.name == "depth" : attribute;
+      const bool mine = limit == "--max-bary" ? f.name == "bary" : limit == "--max-depth" ? f.name == "depth" : f.isAttribute();
       if (mine && !f.bounded) return true;
     }
     return false;
   };
+  const bool anyAttribute = std::any_of(reports.begin(), reports.end(), [](const CompareReport* r) {
+    return std::any_of(r->families.begin(), r->families.end(), [](const FamilyReport& f) { return f.isAttribute(); });
+  });
   std::string bounded, noAttribute;
   for (const std::string& limit : given) {
     if (std::any_of(reports.begin(), reports.end(), [&](const CompareReport* r) { return applied(limit, *r); })) continue;
-    const bool anyAttribute = std::any_of(reports.begin(), reports.end(), [](const CompareReport* r) {
-      return r->families.size() > 2;  // bary, depth, then the attributes
-    });
     std::string& list = limit == "--max-attr" && !anyAttribute ? noAttribute : bounded;
     list += (list.empty() ? "" : ", ") + limit;
   }

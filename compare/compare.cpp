@@ -70,30 +70,33 @@ std::string attributeName(const std::string& family) {
   return family.substr(std::string_view(channels::kAttributePrefix).size());
 }
 
-// The warning limits a report's measured values exceed (Thresholds::warn).
+// Adds `head` + "VALUE" + `joint` + "LIMIT" to `to` when `value` is beyond `limit` (a NaN is):
+// the gate's reasons and the warnings, worded alike.
+void addIfOver(std::vector<std::string>& to, const std::string& head, double value, double limit, const char* joint) {
+  if (!(value <= limit)) to.push_back(head + overLimit(value, limit, joint));
+}
+
+// The warning limits a report's measured values exceed (Thresholds::warn): the same values
+// the fixed limits take (a family's max error, of its range for an attribute that has one).
 std::vector<std::string> warningsOf(const CompareReport& r, const Thresholds::Warnings& w) {
   std::vector<std::string> warnings;
   for (const FamilyReport& f : r.families) {
-    std::optional<double> limit = f.name == "bary" ? w.bary : f.name == "depth" ? w.depth : w.attribute;
-    const bool attribute = f.name != "bary" && f.name != "depth";
-    if (attribute) {
-      const auto own = w.attributeByName.find(attributeName(f.name));
-      if (own != w.attributeByName.end()) limit = own->second;
-    }
-    const bool ofRange = attribute && f.range > 0.0;
-    const double value = ofRange ? f.stats.max / f.range : f.stats.max;
-    if (limit && !(value <= *limit)) {
-      warnings.push_back(f.name + ": max error " +
-                         overLimit(value, *limit, ofRange ? " of range exceeds the warning limit " : " exceeds the warning limit "));
+    const std::optional<double> limit = f.name == "bary"    ? w.bary
+                                        : f.name == "depth" ? w.depth
+                                                            : w.attributeLimit(attributeName(f.name));
+    const bool ofRange = f.isAttribute() && f.range > 0.0;
+    if (limit) {
+      addIfOver(warnings, f.name + ": max error ", ofRange ? f.stats.max / f.range : f.stats.max, *limit,
+                ofRange ? " of range exceeds the warning limit " : " exceeds the warning limit ");
     }
   }
-  if (w.disagreement && !(r.disagreementFraction <= *w.disagreement)) {
-    warnings.push_back("different triangle at " +
-                       overLimit(r.disagreementFraction, *w.disagreement, " of covered pixels, warning limit "));
+  if (w.disagreement) {
+    addIfOver(warnings, "different triangle at ", r.disagreementFraction, *w.disagreement,
+              " of covered pixels, warning limit ");
   }
-  if (w.coverage && !(r.coverageFraction <= *w.coverage)) {
-    warnings.push_back("one-side-only coverage at " +
-                       overLimit(r.coverageFraction, *w.coverage, " of covered pixels, warning limit "));
+  if (w.coverage) {
+    addIfOver(warnings, "one-side-only coverage at ", r.coverageFraction, *w.coverage,
+              " of covered pixels, warning limit ");
   }
   return warnings;
 }
@@ -421,9 +424,9 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     if (f.bounded && !(f.gated <= 1.0)) {
       report.reasons.push_back(f.name + ": error reaches " + formatRatio(f.gated) + "x its bound at " +
                                formatPixel(f.ratio.worst));
-    } else if (!f.bounded && !(f.gated <= f.threshold)) {
-      report.reasons.push_back(f.name + ": max error " +
-                               overLimit(f.gated, f.threshold, f.range > 0.0 ? " of range exceeds " : " exceeds "));
+    } else if (!f.bounded) {
+      addIfOver(report.reasons, f.name + ": max error ", f.gated, f.threshold,
+                f.range > 0.0 ? " of range exceeds " : " exceeds ");
     }
   }
   if (report.explained) {
@@ -434,15 +437,10 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                formatPixel(report.firstUnexplained));
     }
   } else {
-    if (!(report.disagreementFraction <= thresholds.disagreement)) {
-      report.reasons.push_back("different triangle at " +
-                               overLimit(report.disagreementFraction, thresholds.disagreement,
-                                         " of covered pixels, limit "));
-    }
-    if (!(report.coverageFraction <= thresholds.coverage)) {
-      report.reasons.push_back("one-side-only coverage at " +
-                               overLimit(report.coverageFraction, thresholds.coverage, " of covered pixels, limit "));
-    }
+    addIfOver(report.reasons, "different triangle at ", report.disagreementFraction, thresholds.disagreement,
+              " of covered pixels, limit ");
+    addIfOver(report.reasons, "one-side-only coverage at ", report.coverageFraction, thresholds.coverage,
+              " of covered pixels, limit ");
   }
   report.pass = report.reasons.empty();
   report.warnings = warningsOf(report, thresholds.warn);

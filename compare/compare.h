@@ -76,6 +76,12 @@ struct Thresholds {
   struct Warnings {
     std::optional<double> bary, depth, attribute, disagreement, coverage;
     std::map<std::string, double> attributeByName = {};  // as attributeByName above
+
+    // As Thresholds::attributeLimit: attribute `name`'s own warning limit, else `attribute`.
+    std::optional<double> attributeLimit(const std::string& name) const {
+      const auto it = attributeByName.find(name);
+      return it == attributeByName.end() ? attribute : it->second;
+    }
   } warn = {};
 };
 
@@ -89,6 +95,8 @@ struct FamilyReport {
   FamilyStats stats;   // errors
   FamilyStats ulps;    // errors in float ulps: of 1 (bary), of the value (depth), of the range
   FamilyStats ratio;   // errors / bound, when bounded
+
+  bool isAttribute() const { return name != "bary" && name != "depth"; }
 };
 
 struct CompareReport {

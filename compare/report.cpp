@@ -81,7 +81,7 @@ nlohmann::json reportToJson(const CompareReport& r) {
                          {"rms", number(s.rms)},  {"p50", number(s.p50)}, {"p99", number(s.p99)},
                          {"p999", number(s.p999)}, {"threshold", f.threshold},
                          {"gated", number(f.gated)}};
-    if (f.unit == "absolute" && f.name != "bary" && f.name != "depth") fj["range"] = number(f.range);
+    if (f.isAttribute()) fj["range"] = number(f.range);
     fj["bounded"] = f.bounded;
     fj["ulps"] = {{"max", number(f.ulps.max)}, {"p999", number(f.ulps.p999)}};
     if (f.bounded) {
