@@ -23,16 +23,13 @@
 
 #include "core/exr_io.h"
 #include "scenes/registry.h"
+#include "tests/integration/cli_run.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-using CliRun = rc::testing::CommandResult;
-
-CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
+using namespace rc::testing::cli;
 
 TEST(Cli, HelpAndScenesExitZero) {
   EXPECT_EQ(run("--help").exitCode, 0);

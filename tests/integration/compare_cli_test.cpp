@@ -14,16 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/exr_io.h"
+#include "tests/integration/cli_run.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-using CliRun = rc::testing::CommandResult;
-
-CliRun run(const std::string& args) { return rc::testing::runRastercheck(args); }
+using namespace rc::testing::cli;
 
 TEST(Cli, CompareOfAFileWithItselfReportsZeroError) {
   const rc::testing::TempDir temp;  // removed at the end of the test
