@@ -343,14 +343,7 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
 }
 
 BenchResults readBenchJson(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ioError(path, "cannot read bench results");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw badInput(path, std::string("invalid JSON: ") + e.what());
-  }
+  const nlohmann::json doc = readJsonFile(path, "bench results");
   if (!doc.is_object() || doc.value("format_version", 0) != 1 || !doc.contains("rows") || !doc["rows"].is_array()) {
     throw badInput(path, "not a rastercheck bench report (format_version 1 with rows)");
   }

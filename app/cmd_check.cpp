@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <set>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "app/html_report.h"
 #include "app/junit.h"
 #include "app/progress.h"
+#include "compare/baseline.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
@@ -33,6 +35,7 @@ struct CheckArgs {
   bool verbose = false, quiet = false;
   RenderSettings settings;
   Thresholds thresholds;
+  BaselineUse baseline;
   std::vector<std::string> givenLimits;  // the fixed limits given on the command line
   ExrCompression compression = ExrCompression::kZip;
 };
@@ -88,18 +91,34 @@ void requireAttributeLimitsApply(const Scene& scene, const std::string& spec, co
   }
 }
 
+// Holds a scene's report to its figures in the baseline (--baseline): a scene the baseline lacks,
+// or had with another triangle count, is a warning of its own, and its figures are not held.
+void holdSceneToBaseline(CompareReport& report, const std::string& scene, std::size_t triangles,
+                         const std::map<std::string, BaselineFigures>& baseline, const BaselineUse& use) {
+  const auto it = baseline.find(scene);
+  if (it != baseline.end() && it->second.triangles == triangles) return holdReportToBaseline(report, it->second, use);
+  report.warnings.push_back(it == baseline.end() ? "not in the baseline " + use.file + ": not held to it"
+                                                 : "the baseline's scene had " + std::to_string(*it->second.triangles) +
+                                                       " triangles, this one " + std::to_string(triangles) +
+                                                       ": not held to it");
+  report.baseline = use;
+}
+
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
   args.scenes = args.scenes.empty() ? defaultSceneNames() : expandSceneGroups(args.scenes);
   std::vector<std::string> inputs = args.scenes;  // scenes given as files, and the bench results
   if (!args.benchJson.empty()) inputs.push_back(args.benchJson);
+  if (!args.baseline.file.empty()) inputs.push_back(args.baseline.file);
   if (!args.benchJson.empty() && args.report.empty()) throw usageError("--bench-json goes with --report");
   takeStandardOutputByName(args.json);
   takeStandardOutputByName(args.junit);
   const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}, {"--junit", args.junit, ".xml", true}};
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
+  const std::map<std::string, BaselineFigures> baseline =
+      args.baseline.file.empty() ? std::map<std::string, BaselineFigures>{} : readBaseline(args.baseline.file, true);
   const bool wantPictures = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
@@ -131,7 +150,8 @@ int runCheck(CheckArgs& args) {
   for (const Scene& scene : scenes) {
     progress.step(scene.name + ": rasterizer, reference, compare");
     const long long started = nowNanoseconds();
-    const CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
+    CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
+    if (!args.baseline.file.empty()) holdSceneToBaseline(r.report, scene.name, r.triangles, baseline, args.baseline);
     const double seconds = millisecondsSince(started) * 1e-3;
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;
@@ -217,6 +237,7 @@ void registerCheck(CLI::App& root, Action& action) {
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   addThresholdOptions(command, args->thresholds);
+  addBaselineOptions(command, args->baseline, "rastercheck check --json");
   addExrCompressionOption(command, args->compression);
   command->callback([args, command, &action] {
     args->givenLimits = givenLimits(*command);

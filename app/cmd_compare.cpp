@@ -1,10 +1,12 @@
 // `rastercheck compare TEST.exr REF.exr [--heatmap FILE.exr] [--json FILE] [thresholds]`
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "app/commands.h"
 #include "app/junit.h"
 #include "app/options.h"
+#include "compare/baseline.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
@@ -17,6 +19,7 @@ namespace {
 struct CompareArgs {
   std::string test, reference, heatmap, heatmapPng, json, junit;
   Thresholds thresholds;
+  BaselineUse baseline;
   std::vector<std::string> givenLimits;  // the fixed limits given on the command line
   ExrCompression compression = ExrCompression::kZip;
   int threads = 0;
@@ -30,17 +33,21 @@ int runCompare(CompareArgs& args) {
                                                 {"--heatmap-png", args.heatmapPng, ".png"},
                                                 {"--json", args.json, "", true},
                                                 {"--junit", args.junit, ".xml", true}};
-  checkOutputs(outputList, {args.test, args.reference});
+  const bool holdToBaseline = !args.baseline.file.empty();
+  checkOutputs(outputList, holdToBaseline ? std::vector{args.test, args.reference, args.baseline.file}
+                                          : std::vector{args.test, args.reference});
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
   setExrThreads(args.threads);
+  const std::map<std::string, BaselineFigures> baseline =
+      holdToBaseline ? readBaseline(args.baseline.file, false) : std::map<std::string, BaselineFigures>{};
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
-  const CompareReport report = compareImages(test, args.test, reference, args.reference,
-                                             args.thresholds,
-                                             args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap,
-                                             args.threads);
+  CompareReport report = compareImages(test, args.test, reference, args.reference, args.thresholds,
+                                       args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap,
+                                       args.threads);
+  if (holdToBaseline) holdReportToBaseline(report, baseline.at(""), args.baseline);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
   std::fflush(stdout);
@@ -72,6 +79,7 @@ void registerCompare(CLI::App& root, Action& action) {
   command->add_option("--junit", args->junit,
                       "write the verdict as JUnit XML for CI test reports, one test case named by the test image ('-': standard output)");
   addThresholdOptions(command, args->thresholds);
+  addBaselineOptions(command, args->baseline, "rastercheck compare --json");
   addThreadsOption(command, args->threads,
                    "threads decoding and encoding the EXR files and measuring the channel families");
   command->add_option("--attributes", args->thresholds.attributes,

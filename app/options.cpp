@@ -205,6 +205,24 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
                     "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }
 
+void addBaselineOptions(CLI::App* command, BaselineUse& baseline, const std::string& writtenBy) {
+  CLI::Option* file = command->add_option(
+      "--baseline", baseline.file,
+      "hold the figures to an earlier report (" + writtenBy +
+          "): warn (exit 0) for each error or disagreement fraction that grew by more than --baseline-factor");
+  command
+      ->add_option("--baseline-factor", baseline.factor,
+                   "with --baseline: how many times its figure a figure may reach before it is a warning (>= 1)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const std::optional<double> factor = finiteNonNegative(text);
+            return factor && *factor >= 1.0 ? "" : "must be a finite number >= 1, got '" + text + "'";
+          },
+          "FACTOR>=1"))
+      ->needs(file)
+      ->capture_default_str();
+}
+
 std::vector<std::string> givenLimits(const CLI::App& command) {
   std::vector<std::string> given;
   for (const char* name : {"--max-bary", "--max-depth", "--max-attr", "--max-disagreement", "--max-coverage"}) {

@@ -69,6 +69,9 @@ void addRenderOptions(CLI::App* command, RenderSettings& settings);
 // addRenderOptions includes; for commands that render nothing.
 void addSceneOptions(CLI::App* command, RenderSettings& settings);
 void addThresholdOptions(CLI::App* command, Thresholds& thresholds);
+// --baseline FILE and --baseline-factor F: hold the figures to an earlier JSON report, the
+// command's own (`writtenBy`: "rastercheck check --json").
+void addBaselineOptions(CLI::App* command, BaselineUse& baseline, const std::string& writtenBy);
 // The fixed limits (--max-bary, --max-depth, --max-attr, --max-disagreement, --max-coverage)
 // given on `command`'s line.
 std::vector<std::string> givenLimits(const CLI::App& command);

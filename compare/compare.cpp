@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "compare/colormap.h"
+#include "compare/report.h"
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -56,13 +57,8 @@ std::string formatRatio(double value) {
 // "VALUE exceeds LIMIT" (or "VALUE, limit LIMIT") in as few significant digits as tell the two
 // apart, at least 3: fixed decimals printed 1.9e-7 against 1e-9 as 0.000000 against 0.000000.
 std::string overLimit(double value, double limit, const char* joint) {
-  char a[40], b[40];
-  for (int digits = 3; digits <= 17; ++digits) {
-    std::snprintf(a, sizeof a, "%.*g", digits, value);
-    std::snprintf(b, sizeof b, "%.*g", digits, limit);
-    if (std::string_view(a) != b) break;
-  }
-  return std::string(a) + joint + b;
+  const auto [a, b] = formatApart(value, limit);
+  return a + joint + b;
 }
 
 // "uv" of the attribute family "attr.uv" (collectFamilies refuses a channel without a name).

@@ -99,6 +99,13 @@ struct FamilyReport {
   bool isAttribute() const { return name != "bary" && name != "depth"; }
 };
 
+// The earlier report a comparison was held to (--baseline, compare/baseline.h), and the factor
+// by which a figure may grow before it is a warning.
+struct BaselineUse {
+  std::string file;
+  double factor = 2.0;
+};
+
 struct CompareReport {
   std::string testPath, referencePath;
   int width = 0, height = 0;
@@ -116,6 +123,7 @@ struct CompareReport {
   bool pass = false;
   std::vector<std::string> reasons;   // why it failed; empty when it passed
   std::vector<std::string> warnings;  // the warning limits exceeded (Thresholds::warn); never fail
+  std::optional<BaselineUse> baseline;  // with --baseline: its warnings are among `warnings`
 };
 
 // Throws badInput (naming the file and channel) when the images are not comparable: sizes

@@ -3,7 +3,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
+#include <string_view>
+
+#include "core/error.h"
 
 namespace rc {
 
@@ -13,6 +17,26 @@ std::string formatNumber(double value) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", value);
   return buf;
+}
+
+std::pair<std::string, std::string> formatApart(double a, double b) {
+  char textA[40], textB[40];
+  for (int digits = 3; digits <= 17; ++digits) {
+    std::snprintf(textA, sizeof textA, "%.*g", digits, a);
+    std::snprintf(textB, sizeof textB, "%.*g", digits, b);
+    if (std::string_view(textA) != textB) break;
+  }
+  return {textA, textB};
+}
+
+nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ioError(path, "cannot read " + what);
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw badInput(path, std::string("invalid JSON: ") + e.what());
+  }
 }
 
 std::string formatWorst(const WorstPixel& worst) {
@@ -72,6 +96,8 @@ nlohmann::json reportToJson(const CompareReport& r) {
                              {"disagreement", limit(w.disagreement)},
                              {"coverage", limit(w.coverage)},
                              {"attribute_by_name", w.attributeByName}};
+  j["baseline"] = r.baseline ? nlohmann::json{{"file", r.baseline->file}, {"factor", r.baseline->factor}}
+                             : nlohmann::json(nullptr);
   j["left_out"] = r.leftOut;
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyReport& f : r.families) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +25,13 @@ std::string reportToTable(const CompareReport& report);
 
 // "1.23e-07": compact, locale-independent.
 std::string formatNumber(double value);
+// Two numbers in as few significant digits as tell them apart, at least 3 ("1.91e-07" and
+// "1e-09"; 17 for two a ulp apart): fixed decimals print 1.9e-7 and 1e-9 alike as 0.000000.
+std::pair<std::string, std::string> formatApart(double a, double b);
+
+// A JSON document read from `path`; throws ioError when it cannot be read and badInput naming
+// the file when it is not JSON. `what` says what it was to be ("bench results").
+nlohmann::json readJsonFile(const std::string& path, const std::string& what);
 
 // "(x,y) test / reference", or "-" when there was no finite error.
 std::string formatWorst(const WorstPixel& worst);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "compare/baseline.h"
 #include "compare/compare.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
@@ -16,6 +17,7 @@
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
 #include "scenes/registry.h"
+#include "tests/test_files.h"
 
 namespace rc {
 namespace {
@@ -316,6 +318,134 @@ TEST(Compare, WarningLimitsWarnWithoutFailing) {
   EXPECT_FALSE(failed.pass);
   EXPECT_EQ(failed.reasons, (std::vector<std::string>{"bary: max error 0.000977 exceeds 0"}));
   EXPECT_EQ(failed.warnings.size(), 3u);
+}
+
+// --baseline: a report's figures read back from its JSON hold the same report to itself with
+// no warning at a factor of 1, on a real pair gated against the bounds (ratios included).
+TEST(Baseline, AReportHeldToItsOwnJsonHasNoWarnings) {
+  const Scene scene = makeBuiltinScene("sphere");
+  const CompareReport r = compareImages(rasterize(scene, RasterOptions{}), "t", renderReference(scene, ReferenceOptions{}),
+                                        "r", Thresholds{}, nullptr);
+  ASSERT_TRUE(family(r, "bary").bounded);
+  // Round-trips through text, as a CI keeps it.
+  const BaselineFigures b = baselineFigures(nlohmann::json::parse(reportToJson(r).dump()), "base.json: ");
+  EXPECT_EQ(b.families.size(), r.families.size());
+  EXPECT_EQ(b.families.at("bary").max, family(r, "bary").stats.max);
+  EXPECT_EQ(b.families.at("attr.uv").p999, family(r, "attr.uv").stats.p999 / family(r, "attr.uv").range);
+  EXPECT_EQ(b.families.at("depth").boundRatio, family(r, "depth").ratio.max);
+  EXPECT_EQ(b.disagreement, r.disagreementFraction);
+  EXPECT_GT(b.disagreement, 0.0);
+  EXPECT_TRUE(baselineWarnings(r, b, 1.0).empty());
+  // One figure lowered in the baseline: that one warns, and only it.
+  BaselineFigures lower = b;
+  lower.families["bary"].max /= 1.5;
+  const std::vector<std::string> warned = baselineWarnings(r, lower, 1.0);
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_EQ(warned[0].rfind("bary: max error ", 0), 0u) << warned[0];
+  EXPECT_NE(warned[0].find(", 1.5x the baseline's "), std::string::npos) << warned[0];
+  EXPECT_TRUE(baselineWarnings(r, lower, 1.5).empty());
+  // The bounded families are held to their error / bound as well.
+  BaselineFigures tighter = b;
+  tighter.families["depth"].boundRatio = *b.families.at("depth").boundRatio / 2;
+  const std::vector<std::string> ratio = baselineWarnings(r, tighter, 1.5);
+  ASSERT_EQ(ratio.size(), 1u);
+  EXPECT_EQ(ratio[0].rfind("depth: max error / bound ", 0), 0u) << ratio[0];
+}
+
+TEST(Baseline, FiguresThatGrewBeyondTheFactorAreWarnings) {
+  Framebuffer before = image(), now = image();
+  at(before, channels::kBary[0], 3, 4) = 0.25f + 0x1p-12f;
+  at(now, channels::kBary[0], 3, 4) = 0.25f + 0x1p-10f;  // 4x
+  at(now, channels::attributeChannel("uv", 1), 2, 2) = 2.5f;  // 0.5 of 9; before: 0
+  idAt(now, 0, 0) = idAt(now, 1, 0) = idAt(now, 2, 0) = 2;  // 0.03 of the covered pixels; before: none
+  const Thresholds t{1.0, 1.0, 1.0, 1.0, 1.0};
+  const CompareReport r = compareImages(now, "t.exr", image(), "r.exr", t, nullptr);
+  const BaselineFigures b =
+      baselineFigures(reportToJson(compareImages(before, "t.exr", image(), "r.exr", t, nullptr)), "b.json: ");
+  EXPECT_EQ(baselineWarnings(r, b, 2.0),
+            (std::vector<std::string>{"bary: max error 0.000977, 4x the baseline's 0.000244",
+                                      "bary: p99.9 error 0.000977, 4x the baseline's 0.000244",
+                                      "attr.uv: max error 0.0556 of range, where the baseline's was 0",
+                                      "attr.uv: p99.9 error 0.0556 of range, where the baseline's was 0",
+                                      "different triangle at 0.03 of covered pixels, where the baseline's was 0"}));
+  // Exactly the factor is within it; a figure the baseline had at 0 is held as one covered pixel
+  // (3 pixels now: within 3 times it) or an error of 2^-24.
+  EXPECT_EQ(baselineWarnings(r, b, 4.0),
+            (std::vector<std::string>{"attr.uv: max error 0.0556 of range, where the baseline's was 0",
+                                      "attr.uv: p99.9 error 0.0556 of range, where the baseline's was 0"}));
+  EXPECT_EQ(baselineWarnings(r, b, 3.0).size(), 4u);
+
+  // A figure the baseline had as NaN holds nothing; a family it lacks, or another image size, is
+  // said once.
+  BaselineFigures odd = b;
+  odd.families["bary"].max = odd.families["bary"].p999 = std::numeric_limits<double>::quiet_NaN();
+  odd.families.erase("attr.uv");
+  EXPECT_EQ(baselineWarnings(r, odd, 2.0),
+            (std::vector<std::string>{"attr.uv: not in the baseline, not held to it",
+                                      "different triangle at 0.03 of covered pixels, where the baseline's was 0"}));
+  odd.width = 12;
+  EXPECT_EQ(baselineWarnings(r, odd, 2.0),
+            (std::vector<std::string>{"the baseline's images are 12x10, these 10x10: not held to it"}));
+
+  // Held to it, the report carries the warnings after its own and names the baseline.
+  Thresholds warnAlso = t;
+  warnAlso.warn.bary = 0.0;
+  CompareReport held = compareImages(now, "t.exr", image(), "r.exr", warnAlso, nullptr);
+  holdReportToBaseline(held, b, {"b.json", 3.5});
+  ASSERT_EQ(held.warnings.size(), 5u);
+  EXPECT_EQ(held.warnings[0], "bary: max error 0.000977 exceeds the warning limit 0");
+  const nlohmann::json j = reportToJson(held);
+  EXPECT_EQ(j["baseline"], (nlohmann::json{{"file", "b.json"}, {"factor", 3.5}}));
+  EXPECT_EQ(j["warnings"].size(), 5u);
+  EXPECT_EQ(reportToJson(r)["baseline"], nullptr);
+}
+
+TEST(Baseline, AnythingButAReportOfTheCommandIsRefusedNamingTheField) {
+  const rc::testing::TempDir dir;
+  const nlohmann::json report = reportToJson(compareImages(image(), "t.exr", image(), "r.exr", Thresholds{}, nullptr));
+  const nlohmann::json check = {{"format_version", 1}, {"scenes", {{{"scene", "cube"}, {"triangles", 12}, {"report", report}}}}};
+  const std::string compareFile = dir.write("c.json", report.dump()), checkFile = dir.write("k.json", check.dump());
+  EXPECT_EQ(readBaseline(compareFile, false).count(""), 1u);
+  EXPECT_EQ(*readBaseline(checkFile, true).at("cube").triangles, 12u);
+
+  const auto refused = [&](const nlohmann::json& doc, bool perScene, const std::string& message) {
+    const std::string file = dir.write("bad.json", doc.dump());
+    rc::testing::expectError([&] { readBaseline(file, perScene); }, ExitCode::kBadInput, {file + ": " + message}, message);
+  };
+  refused(check, false, "is a report of rastercheck check --json; compare --baseline takes one of compare --json");
+  refused(report, true, "is a report of rastercheck compare --json; check --baseline takes one of check --json");
+  refused(nlohmann::json::array(), false, "not a rastercheck report");
+  nlohmann::json j = report;
+  j["format_version"] = 2;
+  refused(j, false, "not a rastercheck report");
+  j = report;
+  j["families"]["bary"]["max"] = -1;
+  refused(j, false, "/families/bary/max: is -1; a figure is a number >= 0");
+  j = report;
+  j["families"]["attr.uv"]["p999"] = "big";
+  refused(j, false, "/families/attr.uv/p999: is \"big\"");
+  j = report;
+  j.erase("coverage_fraction");
+  refused(j, false, "/coverage_fraction: missing");
+  j = report;
+  j["width"] = 0.5;
+  refused(j, false, "/width: is 0.5; an image side is a whole number of pixels");
+  j = report;
+  j["families"]["depth"]["bound_ratio"] = {{"p999", 1}};
+  refused(j, false, "/families/depth/bound_ratio/max: missing");
+  j = check;
+  j["scenes"].push_back(j["scenes"][0]);
+  refused(j, true, "/scenes/1/scene: names \"cube\" again (/scenes/0)");
+  j = check;
+  j["scenes"][0]["triangles"] = -3;
+  refused(j, true, "/scenes/0/triangles: is -3, not a count");
+  j = check;
+  j["scenes"][0]["report"]["families"] = 7;
+  refused(j, true, "/scenes/0/report/families: is number, not an object");
+  rc::testing::expectError([&] { readBaseline(dir.write("half.json", "{\"format"), false); }, ExitCode::kBadInput,
+                           {"half.json: invalid JSON"}, "truncated");
+  rc::testing::expectError([&] { readBaseline(dir.file("none.json"), false); }, ExitCode::kIo,
+                           {"none.json: cannot read baseline report"}, "missing");
 }
 
 TEST(Compare, HeatmapHasErrorAndClassChannels) {

@@ -449,12 +449,36 @@ TEST(BadInput, Options) {
                            "check --max-attr uv", "check --max-attr =1", "check --max-attr uv=", "check --max-attr uv=-1",
                            "check --max-attr uv=nan", "check --max-attr 1,2", "compare a.exr b.exr --max-attr uv=1,uv=2",
                            "check --warn-bary -1", "check --warn-depth nan", "check --warn-attr uv=x",
-                           "compare a.exr b.exr --warn-coverage"}) {
+                           "compare a.exr b.exr --warn-coverage",
+                           // --baseline-factor: >= 1, and only with --baseline
+                           "check --baseline-factor 3", "check --baseline b.json --baseline-factor 0.99",
+                           "check --baseline b.json --baseline-factor inf", "compare a.exr b.exr --baseline"}) {
     const Outcome r = rastercheck(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
   }
   // --threads 0 is documented as "all cores", not an error.
   EXPECT_EQ(rastercheck("check cube -q --threads 0").exitCode, 0);
+}
+
+// A --baseline that is not a report of the command: refused before anything is rendered or read.
+TEST(BadInput, BaselineReports) {
+  TempDir dir;
+  const std::string compareReport = dir.write("c.json", R"({"format_version": 1, "width": 8, "height": 8,
+      "disagreement_fraction": 0, "coverage_fraction": 0, "families": {}})");
+  const std::string checkReport = dir.write("k.json", R"({"format_version": 1, "scenes": [{"scene": "cube",
+      "triangles": 12, "report": {"format_version": 1, "width": 640, "height": 480, "disagreement_fraction": 0,
+      "coverage_fraction": 0, "families": {"bary": {"max": "nan", "p999": -2}}}}]})");
+  expectRefusedCheck(dir, "cube --baseline " + compareReport, 3, compareReport + ": is a report of rastercheck compare --json");
+  expectRefusedCheck(dir, "cube --baseline " + checkReport, 3, checkReport + ": /scenes/0/report/families/bary/p999: is -2");
+  expectRefusedCheck(dir, "cube --baseline " + dir.write("t.json", "{\"format_version\": 1, \"scenes\": [}"), 3,
+                     "t.json: invalid JSON");
+  expectRefusedCheck(dir, "cube --baseline " + dir.file("absent.json"), 4, "absent.json: cannot read baseline report");
+
+  const std::string json = dir.file("r.json"), heatmap = dir.file("h.exr");
+  const Outcome r = rastercheck("compare a.exr b.exr --baseline " + checkReport + " --json " + json + " --heatmap " + heatmap);
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find(checkReport + ": is a report of rastercheck check --json"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(json) || fs::exists(heatmap));
 }
 
 TEST(BadInput, CommaDecimalLocaleChangesNothing) {

@@ -325,4 +325,50 @@ TEST(Cli, WarningLimitsArePrintedAndNeverFail) {
       << typo.output;
 }
 
+// --baseline: a run held to an earlier run's report. The same run has nothing to say; a
+// coarser snapping, which the gate passes, grows the disagreements twentyfold and is warned of.
+TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
+  const rc::testing::TempDir temp;
+  const std::string base = temp.file("base.json"), now = temp.file("now.json"), junit = temp.file("j.xml");
+  ASSERT_EQ(run("check cube sphere -q --json " + base).exitCode, 0);
+  const CliRun same = run("check cube sphere -q --baseline " + base + " --baseline-factor 1");
+  EXPECT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_EQ(same.output.find("warning"), std::string::npos) << same.output;
+
+  const CliRun coarse = run("check cube sphere floor -q --subpixel-bits 4 --baseline " + base + " --json " + now +
+                            " --junit " + junit);
+  EXPECT_EQ(coarse.exitCode, 0) << coarse.output;
+  EXPECT_NE(coarse.output.find("    warning: different triangle at 0.0032 of covered pixels, 20.9x the baseline's 0.000153\n"),
+            std::string::npos)
+      << coarse.output;
+  EXPECT_NE(coarse.output.find("    warning: not in the baseline " + base + ": not held to it\n"), std::string::npos)
+      << coarse.output;
+  EXPECT_NE(coarse.output.find("3 scene(s): all pass; 3 with warnings\n"), std::string::npos) << coarse.output;
+  const nlohmann::json report = nlohmann::json::parse(rc::testing::readFile(now));
+  EXPECT_EQ(report["verdict"], "pass");
+  EXPECT_EQ(report["scenes"][1]["report"]["baseline"], (nlohmann::json{{"file", base}, {"factor", 2.0}}));
+  EXPECT_GE(report["scenes"][1]["report"]["warnings"].size(), 1u);
+  EXPECT_NE(rc::testing::readFile(junit).find("\nwarning: different triangle at "), std::string::npos);
+  // A factor above the growth keeps it quiet.
+  const CliRun loose = run("check cube sphere -q --subpixel-bits 4 --baseline " + base + " --baseline-factor 100");
+  EXPECT_EQ(loose.output.find("warning"), std::string::npos) << loose.output;
+
+  // compare holds one comparison to a compare report, and refuses check's.
+  const std::string raster = temp.file("s.exr"), ref = temp.file("r.exr"), one = temp.file("one.json");
+  ASSERT_EQ(run("render sphere -o " + raster).exitCode, 0);
+  ASSERT_EQ(run("render sphere --backend reference -o " + ref).exitCode, 0);
+  ASSERT_EQ(run("compare " + raster + " " + ref + " --json " + one).exitCode, 0);
+  const CliRun held = run("compare " + raster + " " + ref + " --baseline " + one + " --baseline-factor 1");
+  EXPECT_EQ(held.exitCode, 0) << held.output;
+  EXPECT_EQ(held.output.find("warning"), std::string::npos) << held.output;
+  const CliRun wrong = run("compare " + raster + " " + ref + " --baseline " + base);
+  EXPECT_EQ(wrong.exitCode, 3) << wrong.output;
+  EXPECT_NE(wrong.output.find(base + ": is a report of rastercheck check --json; compare --baseline takes one of compare --json"),
+            std::string::npos)
+      << wrong.output;
+  EXPECT_EQ(run("check cube --baseline-factor 3").exitCode, 2);
+  EXPECT_EQ(run("check cube --baseline " + base + " --baseline-factor 0.5").exitCode, 2);
+  EXPECT_EQ(run("check cube --baseline " + base + " --json " + base).exitCode, 2);  // would replace its input
+}
+
 }  // namespace
