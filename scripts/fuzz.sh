@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRASTERCHECK_FUZZ=ON -DRASTERCHECK_BUILD_TESTS=OFF > /dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_obj fuzz_gltf fuzz_scene_file fuzz_exr_pair rastercheck
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_obj fuzz_gltf fuzz_scene_file fuzz_exr_pair fuzz_baseline rastercheck
 
 work=build-fuzz/work
 rm -rf "$work"
@@ -21,9 +21,13 @@ for scene in cube sphere; do
   build-fuzz/app/rastercheck render "$scene" --size 8x6 --backend reference -o "$work/b.exr" > /dev/null
   { cat "$work/a.exr"; printf -- '--RC-SPLIT--'; cat "$work/b.exr"; } > "$work/exr/$scene.pair"
 done
+# Baseline seeds are written the same way: a compare report and a check report of 8x6 renders.
+mkdir -p "$work/baseline"
+build-fuzz/app/rastercheck compare "$work/a.exr" "$work/b.exr" --json "$work/baseline/compare.json" > /dev/null
+build-fuzz/app/rastercheck check cube sphere --size 8x6 -q --json "$work/baseline/check.json" > /dev/null
 
 status=0
-for pair in obj:fuzz_obj gltf:fuzz_gltf scene:fuzz_scene_file exr:fuzz_exr_pair; do
+for pair in obj:fuzz_obj gltf:fuzz_gltf scene:fuzz_scene_file exr:fuzz_exr_pair baseline:fuzz_baseline; do
   corpus=${pair%%:*}
   target=${pair##*:}
   echo "fuzz: $target for ${seconds}s"
