@@ -102,6 +102,7 @@ void holdSceneToBaseline(CompareReport& report, const std::string& scene, std::s
                                                        " triangles, this one " + std::to_string(triangles) +
                                                        ": not held to it");
   report.baseline = use;
+  report.settleWarnings();
 }
 
 int runCheck(CheckArgs& args) {
@@ -204,6 +205,7 @@ int runCheck(CheckArgs& args) {
   std::vector<const CompareReport*> reports;
   for (const ReportScene& s : reportScenes) reports.push_back(&s.report);
   noteUnappliedLimits(args.givenLimits, reports);
+  noteIdleFailOnWarnings(args.thresholds, args.baseline);
   if (!args.report.empty()) {
     outputs.write((fs::path(args.report) / "index.html").string(), [&](const std::string&) {
       writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);

@@ -52,6 +52,7 @@ int runCompare(CompareArgs& args) {
               reportToTable(report).c_str());
   std::fflush(stdout);
   noteUnappliedLimits(args.givenLimits, {&report});
+  noteIdleFailOnWarnings(args.thresholds, args.baseline);
   WrittenOutputs outputs;
   outputs.write(args.heatmap, [&](const std::string& path) { writeExr(heatmap, path, args.compression); });
   outputs.write(args.heatmapPng, [&](const std::string& path) { writePng(heatmapImage(heatmap), path); });

@@ -201,6 +201,8 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
   command->add_option("--warn-coverage", t.warn.coverage,
                       warns + "the fraction of covered pixels covered by one image only exceeds this")
       ->check(kFiniteNonNegative);
+  command->add_flag("--fail-on-warnings", t.warn.fail,
+                    "every warning (--warn-*, --baseline) fails the gate (exit 1) as one of its reasons");
   command->add_flag("--allow-empty", t.allowEmpty,
                     "let a pair of images in which neither covers a pixel pass (by default it fails: nothing was compared)");
 }
@@ -221,6 +223,15 @@ void addBaselineOptions(CLI::App* command, BaselineUse& baseline, const std::str
           "FACTOR>=1"))
       ->needs(file)
       ->capture_default_str();
+}
+
+void noteIdleFailOnWarnings(const Thresholds& t, const BaselineUse& baseline) {
+  const Thresholds::Warnings& w = t.warn;
+  const bool anyLimit = w.bary || w.depth || w.attribute || w.disagreement || w.coverage || !w.attributeByName.empty();
+  if (w.fail && !anyLimit && baseline.file.empty()) {
+    std::fprintf(stderr, "rastercheck: note: --fail-on-warnings has nothing to fail on: no --warn-* limit or --baseline "
+                         "was given\n");
+  }
 }
 
 std::vector<std::string> givenLimits(const CLI::App& command) {

@@ -79,6 +79,8 @@ std::vector<std::string> givenLimits(const CLI::App& command);
 // the bound channels (the bounds gate those families, and the disagreements are explained), or
 // no attribute was compared. A limit the user set is never left unused in silence.
 void noteUnappliedLimits(const std::vector<std::string>& given, const std::vector<const CompareReport*>& reports);
+// Says on stderr that --fail-on-warnings was given without a warning limit or a baseline.
+void noteIdleFailOnWarnings(const Thresholds& thresholds, const BaselineUse& baseline);
 // --exr-compression, for the commands that write EXR files.
 void addExrCompressionOption(CLI::App* command, ExrCompression& compression);
 // --threads N, 0..256 (0 = all cores); `what` says what the threads do.

@@ -156,6 +156,7 @@ std::vector<std::string> baselineWarnings(const CompareReport& now, const Baseli
 void holdReportToBaseline(CompareReport& report, const BaselineFigures& before, const BaselineUse& use) {
   for (std::string& warning : baselineWarnings(report, before, use.factor)) report.warnings.push_back(std::move(warning));
   report.baseline = use;
+  report.settleWarnings();
 }
 
 }  // namespace rc

@@ -440,6 +440,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   }
   report.pass = report.reasons.empty();
   report.warnings = warningsOf(report, thresholds.warn);
+  report.settleWarnings();
 
   if (heatmap) {
     std::uint32_t* classPlane = heatmap->addUint("class.id");

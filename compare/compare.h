@@ -76,6 +76,9 @@ struct Thresholds {
   struct Warnings {
     std::optional<double> bary, depth, attribute, disagreement, coverage;
     std::map<std::string, double> attributeByName = {};  // as attributeByName above
+    // --fail-on-warnings: every warning (these limits', a baseline's) fails the gate instead,
+    // as one of its reasons.
+    bool fail = false;
 
     // As Thresholds::attributeLimit: attribute `name`'s own warning limit, else `attribute`.
     std::optional<double> attributeLimit(const std::string& name) const {
@@ -124,6 +127,14 @@ struct CompareReport {
   std::vector<std::string> reasons;   // why it failed; empty when it passed
   std::vector<std::string> warnings;  // the warning limits exceeded (Thresholds::warn); never fail
   std::optional<BaselineUse> baseline;  // with --baseline: its warnings are among `warnings`
+
+  // With thresholds.warn.fail, moves the warnings to the reasons: each fails the gate.
+  void settleWarnings() {
+    if (!thresholds.warn.fail || warnings.empty()) return;
+    reasons.insert(reasons.end(), warnings.begin(), warnings.end());
+    warnings.clear();
+    pass = false;
+  }
 };
 
 // Throws badInput (naming the file and channel) when the images are not comparable: sizes

@@ -95,7 +95,8 @@ nlohmann::json reportToJson(const CompareReport& r) {
                              {"attribute", limit(w.attribute)},
                              {"disagreement", limit(w.disagreement)},
                              {"coverage", limit(w.coverage)},
-                             {"attribute_by_name", w.attributeByName}};
+                             {"attribute_by_name", w.attributeByName},
+                             {"fail", w.fail}};
   j["baseline"] = r.baseline ? nlohmann::json{{"file", r.baseline->file}, {"factor", r.baseline->factor}}
                              : nlohmann::json(nullptr);
   j["left_out"] = r.leftOut;

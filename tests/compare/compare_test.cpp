@@ -318,6 +318,21 @@ TEST(Compare, WarningLimitsWarnWithoutFailing) {
   EXPECT_FALSE(failed.pass);
   EXPECT_EQ(failed.reasons, (std::vector<std::string>{"bary: max error 0.000977 exceeds 0"}));
   EXPECT_EQ(failed.warnings.size(), 3u);
+
+  // --fail-on-warnings: each warning is a reason instead, after the gate's own.
+  t.warn.fail = true;
+  const CompareReport strict = warned();
+  EXPECT_FALSE(strict.pass);
+  EXPECT_EQ(strict.reasons.size(), 4u);
+  EXPECT_EQ(strict.reasons[1], "bary: max error 0.000977 exceeds the warning limit 0.000488");
+  EXPECT_TRUE(strict.warnings.empty());
+  EXPECT_EQ(reportToJson(strict)["thresholds"]["warn"]["fail"], true);
+  t.bary = 1.0;
+  EXPECT_EQ(warned().reasons.size(), 3u);
+  EXPECT_FALSE(warned().pass);
+  t.warn = {};
+  t.warn.fail = true;
+  EXPECT_TRUE(warned().pass);  // nothing to warn of
 }
 
 // --baseline: a report's figures read back from its JSON hold the same report to itself with
@@ -398,6 +413,14 @@ TEST(Baseline, FiguresThatGrewBeyondTheFactorAreWarnings) {
   EXPECT_EQ(j["baseline"], (nlohmann::json{{"file", "b.json"}, {"factor", 3.5}}));
   EXPECT_EQ(j["warnings"].size(), 5u);
   EXPECT_EQ(reportToJson(r)["baseline"], nullptr);
+  // With --fail-on-warnings the baseline's warnings fail the gate as well.
+  warnAlso.warn.fail = true;
+  CompareReport strict = compareImages(now, "t.exr", image(), "r.exr", warnAlso, nullptr);
+  EXPECT_EQ(strict.reasons.size(), 1u);
+  holdReportToBaseline(strict, b, {"b.json", 3.5});
+  EXPECT_FALSE(strict.pass);
+  EXPECT_EQ(strict.reasons.size(), 5u);
+  EXPECT_TRUE(strict.warnings.empty());
 }
 
 TEST(Baseline, AnythingButAReportOfTheCommandIsRefusedNamingTheField) {

@@ -349,6 +349,17 @@ TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
   EXPECT_EQ(report["scenes"][1]["report"]["baseline"], (nlohmann::json{{"file", base}, {"factor", 2.0}}));
   EXPECT_GE(report["scenes"][1]["report"]["warnings"].size(), 1u);
   EXPECT_NE(rc::testing::readFile(junit).find("\nwarning: different triangle at "), std::string::npos);
+  // --fail-on-warnings makes them the gate's reasons: exit 1, a JUnit failure per scene warned.
+  const CliRun strict = run("check cube sphere -q --subpixel-bits 4 --fail-on-warnings --baseline " + base + " --junit " + junit);
+  EXPECT_EQ(strict.exitCode, 1) << strict.output;
+  EXPECT_NE(strict.output.find("    - different triangle at 0.0032 of covered pixels, 20.9x the baseline's 0.000153\n"),
+            std::string::npos)
+      << strict.output;
+  EXPECT_EQ(rc::testing::occurrences(rc::testing::readFile(junit), "<failure "), 2);
+  EXPECT_EQ(run("check cube sphere -q --fail-on-warnings --baseline " + base).exitCode, 0);
+  const CliRun idle = run("check cube -q --fail-on-warnings");
+  EXPECT_EQ(idle.exitCode, 0);
+  EXPECT_NE(idle.output.find("note: --fail-on-warnings has nothing to fail on"), std::string::npos) << idle.output;
   // A factor above the growth keeps it quiet.
   const CliRun loose = run("check cube sphere -q --subpixel-bits 4 --baseline " + base + " --baseline-factor 100");
   EXPECT_EQ(loose.output.find("warning"), std::string::npos) << loose.output;
