@@ -161,8 +161,9 @@ void writeHtmlReport(const std::string& dir, const std::vector<ReportScene>& sce
        << "<title>rastercheck report</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n"
        << "<h1>rastercheck report</h1>\n<p class=\"summary\"><span class=\"" << (failed ? "fail" : "pass") << "\">"
        << (failed ? "FAIL" : "PASS") << "</span> "
-       << (failed ? std::to_string(failed) + " of " + std::to_string(scenes.size()) + " scenes fail the gate"
-                  : "all " + std::to_string(scenes.size()) + " scenes pass the gate")
+       << (scenes.size() == 1 ? std::string(failed ? "the scene fails the gate" : "the scene passes the gate")
+           : failed             ? std::to_string(failed) + " of " + std::to_string(scenes.size()) + " scenes fail the gate"
+                                : "all " + std::to_string(scenes.size()) + " scenes pass the gate")
        << (warned ? "; " + std::to_string(warned) + " with warnings" : std::string())
        << "</p>\n<p class=\"settings\">" << escapeMarkup(settings) << "</p>\n"
        << "<p class=\"settings\">Heatmaps: barycentric error on a log10 magma scale from 1e-8 (dark) to 1e-1 "

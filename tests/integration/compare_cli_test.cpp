@@ -356,6 +356,11 @@ TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
             std::string::npos)
       << strict.output;
   EXPECT_EQ(rc::testing::occurrences(rc::testing::readFile(junit), "<failure "), 2);
+  const std::string folder = temp.file("report");
+  EXPECT_EQ(run("check cube -q --subpixel-bits 4 --fail-on-warnings --baseline " + base + " --report " + folder).exitCode, 1);
+  const std::string html = rc::testing::readFile(fs::path(folder) / "index.html");
+  EXPECT_NE(html.find("FAIL</span> the scene fails the gate</p>"), std::string::npos) << html.substr(0, 2000);
+  EXPECT_NE(html.find("one-side-only coverage at 7.77e-05 of covered pixels, where the baseline&#39;s was 0"), std::string::npos);
   EXPECT_EQ(run("check cube sphere -q --fail-on-warnings --baseline " + base).exitCode, 0);
   const CliRun idle = run("check cube -q --fail-on-warnings");
   EXPECT_EQ(idle.exitCode, 0);
