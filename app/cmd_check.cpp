@@ -91,16 +91,17 @@ void requireAttributeLimitsApply(const Scene& scene, const std::string& spec, co
   }
 }
 
-// Holds a scene's report to its figures in the baseline (--baseline): a scene the baseline lacks,
-// or had with another triangle count, is a warning of its own, and its figures are not held.
-void holdSceneToBaseline(CompareReport& report, const std::string& scene, std::size_t triangles,
-                         const std::map<std::string, BaselineFigures>& baseline, const BaselineUse& use) {
+// Holds a scene's report to its figures in the baseline (--baseline), the `occurrence`th of its
+// name there as here: a scene the baseline lacks, or had with another triangle count, is a
+// warning of its own, and its figures are not held.
+void holdSceneToBaseline(CompareReport& report, const std::string& scene, std::size_t occurrence, std::size_t triangles,
+                         const Baseline& baseline, const BaselineUse& use) {
   const auto it = baseline.find(scene);
-  if (it != baseline.end() && it->second.triangles == triangles) return holdReportToBaseline(report, it->second, use);
-  report.warnings.push_back(it == baseline.end() ? "not in the baseline " + use.file + ": not held to it"
-                                                 : "the baseline's scene had " + std::to_string(*it->second.triangles) +
-                                                       " triangles, this one " + std::to_string(triangles) +
-                                                       ": not held to it");
+  const BaselineFigures* before = it != baseline.end() && occurrence < it->second.size() ? &it->second[occurrence] : nullptr;
+  if (before && before->triangles == triangles) return holdReportToBaseline(report, *before, use);
+  report.warnings.push_back(!before ? "not in the baseline " + use.file + ": not held to it"
+                                    : "the baseline's scene had " + std::to_string(*before->triangles) +
+                                          " triangles, this one " + std::to_string(triangles) + ": not held to it");
   report.baseline = use;
   report.settleWarnings();
 }
@@ -118,8 +119,8 @@ int runCheck(CheckArgs& args) {
   const std::vector<OutputOption> outputList = {{"--json", args.json, "", true}, {"--junit", args.junit, ".xml", true}};
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
-  const std::map<std::string, BaselineFigures> baseline =
-      args.baseline.file.empty() ? std::map<std::string, BaselineFigures>{} : readBaseline(args.baseline.file, true);
+  const Baseline baseline = args.baseline.file.empty() ? Baseline{} : readBaseline(args.baseline.file, true);
+  std::map<std::string, std::size_t> occurrences;  // of each scene name so far, to pair with the baseline's
   const bool wantPictures = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
@@ -152,7 +153,10 @@ int runCheck(CheckArgs& args) {
     progress.step(scene.name + ": rasterizer, reference, compare");
     const long long started = nowNanoseconds();
     CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
-    if (!args.baseline.file.empty()) holdSceneToBaseline(r.report, scene.name, r.triangles, baseline, args.baseline);
+    const std::size_t occurrence = occurrences[scene.name]++;
+    if (!args.baseline.file.empty()) {
+      holdSceneToBaseline(r.report, scene.name, occurrence, r.triangles, baseline, args.baseline);
+    }
     const double seconds = millisecondsSince(started) * 1e-3;
     const FamilyStats& bary = r.report.families[0].stats;
     const FamilyStats& depth = r.report.families[1].stats;

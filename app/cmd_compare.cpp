@@ -1,6 +1,5 @@
 // `rastercheck compare TEST.exr REF.exr [--heatmap FILE.exr] [--json FILE] [thresholds]`
 #include <cstdio>
-#include <map>
 #include <memory>
 
 #include "app/commands.h"
@@ -39,15 +38,14 @@ int runCompare(CompareArgs& args) {
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
   setExrThreads(args.threads);
-  const std::map<std::string, BaselineFigures> baseline =
-      holdToBaseline ? readBaseline(args.baseline.file, false) : std::map<std::string, BaselineFigures>{};
+  const Baseline baseline = holdToBaseline ? readBaseline(args.baseline.file, false) : Baseline{};
   const Framebuffer test = readExr(args.test);
   const Framebuffer reference = readExr(args.reference);
   Framebuffer heatmap;
   CompareReport report = compareImages(test, args.test, reference, args.reference, args.thresholds,
                                        args.heatmap.empty() && args.heatmapPng.empty() ? nullptr : &heatmap,
                                        args.threads);
-  if (holdToBaseline) holdReportToBaseline(report, baseline.at(""), args.baseline);
+  if (holdToBaseline) holdReportToBaseline(report, baseline.at("").front(), args.baseline);
   std::printf("test      %s\nreference %s\n%s", args.test.c_str(), args.reference.c_str(),
               reportToTable(report).c_str());
   std::fflush(stdout);

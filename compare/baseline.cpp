@@ -86,7 +86,7 @@ BaselineFigures baselineFigures(const nlohmann::json& report, const std::string&
   return b;
 }
 
-std::map<std::string, BaselineFigures> readBaseline(const std::string& path, bool perScene) {
+Baseline readBaseline(const std::string& path, bool perScene) {
   const nlohmann::json doc = readJsonFile(path, "baseline report");
   if (!doc.is_object() || doc.value("format_version", nlohmann::json()) != kReportFormatVersion) {
     throw badInput(path, "not a rastercheck report (a JSON object with \"format_version\": 1)");
@@ -96,27 +96,22 @@ std::map<std::string, BaselineFigures> readBaseline(const std::string& path, boo
     throw badInput(path, isCheck ? "is a report of rastercheck check --json; compare --baseline takes one of compare --json"
                                  : "is a report of rastercheck compare --json; check --baseline takes one of check --json");
   }
-  std::map<std::string, BaselineFigures> figures;
+  Baseline figures;
   if (!perScene) {
-    figures[""] = baselineFigures(doc, path + ": ");
+    figures[""].push_back(baselineFigures(doc, path + ": "));
     return figures;
   }
   const nlohmann::json& scenes = doc["scenes"];
   if (!scenes.is_array()) throw badInput(path + ": /scenes", "is " + std::string(scenes.type_name()) + ", not an array");
-  std::map<std::string, std::size_t> seenAt;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string at = path + ": /scenes/" + std::to_string(i);
     const nlohmann::json& name = field(scenes[i], "scene", at);
     if (!name.is_string()) throw badInput(at + "/scene", "is " + name.dump() + ", not a string");
     const nlohmann::json& triangles = field(scenes[i], "triangles", at);
     if (!triangles.is_number_unsigned()) throw badInput(at + "/triangles", "is " + triangles.dump() + ", not a count");
-    const auto [seen, first] = seenAt.emplace(name.get<std::string>(), i);
-    if (!first) {
-      throw badInput(at + "/scene", "names " + name.dump() + " again (/scenes/" + std::to_string(seen->second) + ")");
-    }
     BaselineFigures b = baselineFigures(field(scenes[i], "report", at), at + "/report");
     b.triangles = triangles.get<std::size_t>();
-    figures[name.get<std::string>()] = b;
+    figures[name.get<std::string>()].push_back(b);
   }
   return figures;
 }

@@ -36,11 +36,14 @@ struct BaselineFigures {
 // field for one that is missing, mistyped or negative.
 BaselineFigures baselineFigures(const nlohmann::json& report, const std::string& where);
 
-// Reads a baseline report from `path`: a compare report (`perScene` false), whose figures are
-// returned under the name "", or a check report (`perScene` true), whose scenes are returned by
-// name with their triangle counts. Throws ioError when the file cannot be read and badInput
-// naming the file and field when it is not such a report, or names a scene twice.
-std::map<std::string, BaselineFigures> readBaseline(const std::string& path, bool perScene);
+// A baseline's figures by scene name, in the order its report lists them: a scene given twice to
+// check (`check cube cube`) has two. A compare report's are under the name "".
+using Baseline = std::map<std::string, std::vector<BaselineFigures>>;
+
+// Reads a baseline report from `path`: a compare report (`perScene` false) or a check report
+// (`perScene` true), whose scenes come with their triangle counts. Throws ioError when the file
+// cannot be read and badInput naming the file and field when it is not such a report.
+Baseline readBaseline(const std::string& path, bool perScene);
 
 // The figures of `now` that exceed `factor` times the baseline's, one line each ("bary: max
 // error 5.1e-05, 2.11x the baseline's 2.42e-05"). A baseline figure below a floor is held as the

@@ -36,8 +36,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string path = rc::fuzz::writeInput("baseline.json", data, size);
   for (const bool perScene : {false, true}) {
     try {
-      for (const auto& [scene, figures] : rc::readBaseline(path, perScene)) {
-        for (const double factor : {1.0, 2.0}) rc::baselineWarnings(now, figures, factor);
+      for (const auto& [scene, each] : rc::readBaseline(path, perScene)) {
+        for (const rc::BaselineFigures& figures : each) {
+          for (const double factor : {1.0, 2.0}) rc::baselineWarnings(now, figures, factor);
+        }
       }
     } catch (const rc::Error&) {
     }

@@ -365,6 +365,12 @@ TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
   const CliRun idle = run("check cube -q --fail-on-warnings");
   EXPECT_EQ(idle.exitCode, 0);
   EXPECT_NE(idle.output.find("note: --fail-on-warnings has nothing to fail on"), std::string::npos) << idle.output;
+  // A scene given twice is held to its first and second entries in turn.
+  const std::string twice = temp.file("twice.json");
+  ASSERT_EQ(run("check cube cube -q --json " + twice).exitCode, 0);
+  const CliRun again = run("check cube cube -q --baseline-factor 1 --baseline " + twice);
+  EXPECT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_EQ(again.output.find("warning"), std::string::npos) << again.output;
   // A factor above the growth keeps it quiet.
   const CliRun loose = run("check cube sphere -q --subpixel-bits 4 --baseline " + base + " --baseline-factor 100");
   EXPECT_EQ(loose.output.find("warning"), std::string::npos) << loose.output;
