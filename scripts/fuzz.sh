@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRASTERCHECK_FUZZ=ON -DRASTERCHECK_BUILD_TESTS=OFF > /dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_obj fuzz_gltf fuzz_scene_file fuzz_exr_pair fuzz_baseline rastercheck
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_obj fuzz_gltf fuzz_scene_file fuzz_exr_pair fuzz_baseline fuzz_bench_json rastercheck
 
 work=build-fuzz/work
 rm -rf "$work"
@@ -25,9 +25,11 @@ done
 mkdir -p "$work/baseline"
 build-fuzz/app/rastercheck compare "$work/a.exr" "$work/b.exr" --json "$work/baseline/compare.json" > /dev/null
 build-fuzz/app/rastercheck check cube sphere --size 8x6 -q --json "$work/baseline/check.json" > /dev/null
+mkdir -p "$work/bench"
+build-fuzz/app/rastercheck bench cube --size 8x6 --runs 1 -q --json "$work/bench/cube.json" > /dev/null
 
 status=0
-for pair in obj:fuzz_obj gltf:fuzz_gltf scene:fuzz_scene_file exr:fuzz_exr_pair baseline:fuzz_baseline; do
+for pair in obj:fuzz_obj gltf:fuzz_gltf scene:fuzz_scene_file exr:fuzz_exr_pair baseline:fuzz_baseline bench:fuzz_bench_json; do
   corpus=${pair%%:*}
   target=${pair##*:}
   echo "fuzz: $target for ${seconds}s"
