@@ -187,7 +187,7 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
                       "gate without edge.dist channels: max fraction of covered pixels covered by one image only")
       ->check(kFiniteNonNegative)->capture_default_str();
   // Warning limits: the same values in the same units, whatever gates them; never fail.
-  const std::string warns = "warn (exit 0) when ";
+  const std::string warns = "warn (exit 0 unless --fail-on-warnings) when ";
   command->add_option("--warn-bary", t.warn.bary, warns + "the max barycentric error (absolute) exceeds this")
       ->check(kFiniteNonNegative);
   command->add_option("--warn-depth", t.warn.depth, warns + "the max depth error (relative) exceeds this")
@@ -211,7 +211,9 @@ void addBaselineOptions(CLI::App* command, BaselineUse& baseline, const std::str
   CLI::Option* file = command->add_option(
       "--baseline", baseline.file,
       "hold the figures to an earlier report (" + writtenBy +
-          "): warn (exit 0) for each error or disagreement fraction that grew by more than --baseline-factor");
+          "): warn (exit 0 unless --fail-on-warnings) for each error or disagreement fraction that grew by more "
+                          "than --baseline-factor")
+      ->type_name("FILE");
   command
       ->add_option("--baseline-factor", baseline.factor,
                    "with --baseline: how many times its figure a figure may reach before it is a warning (>= 1)")
@@ -220,7 +222,8 @@ void addBaselineOptions(CLI::App* command, BaselineUse& baseline, const std::str
             const std::optional<double> factor = finiteNonNegative(text);
             return factor && *factor >= 1.0 ? "" : "must be a finite number >= 1, got '" + text + "'";
           },
-          "FACTOR>=1"))
+          ""))
+      ->type_name("F")
       ->needs(file)
       ->capture_default_str();
 }
