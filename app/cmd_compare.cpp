@@ -33,8 +33,9 @@ int runCompare(CompareArgs& args) {
                                                 {"--json", args.json, "", true},
                                                 {"--junit", args.junit, ".xml", true}};
   const bool holdToBaseline = !args.baseline.file.empty();
-  checkOutputs(outputList, holdToBaseline ? std::vector{args.test, args.reference, args.baseline.file}
-                                          : std::vector{args.test, args.reference});
+  std::vector<std::string> inputs = {args.test, args.reference};
+  if (holdToBaseline) inputs.push_back(args.baseline.file);
+  checkOutputs(outputList, inputs);
   checkOutputFolders(outputList);
   routeTextAwayFromStandardOutput(outputList);
   setExrThreads(args.threads);

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
@@ -51,9 +50,7 @@ void addIfGrown(std::vector<std::string>& to, const std::string& head, double no
     return;
   }
   const auto [value, base] = formatApart(now, before);
-  char ratio[32];
-  std::snprintf(ratio, sizeof ratio, "%.3g", now / before);
-  to.push_back(head + value + tail + ", " + ratio + "x the baseline's " + base);
+  to.push_back(head + value + tail + ", " + formatNumber(now / before) + "x the baseline's " + base);
 }
 
 // A family's figure in the units of the warnings: of the range for an attribute that has one.
@@ -72,8 +69,7 @@ BaselineFigures baselineFigures(const nlohmann::json& report, const std::string&
   if (!families.is_object()) throw badInput(familiesAt, "is " + std::string(families.type_name()) + ", not an object");
   for (const auto& [name, f] : families.items()) {
     const std::string at = familiesAt + "/" + name;
-    const bool attribute = name != "bary" && name != "depth";
-    const double range = attribute && f.is_object() && f.contains("range") ? figure(f["range"], at + "/range") : 0.0;
+    const double range = isAttributeFamily(name) && f.is_object() && f.contains("range") ? figure(f["range"], at + "/range") : 0.0;
     BaselineFigures::Family family;
     family.max = ofRange(figure(field(f, "max", at), at + "/max"), range);
     family.p999 = ofRange(figure(field(f, "p999", at), at + "/p999"), range);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <optional>
@@ -46,12 +45,6 @@ std::string formatPixel(const WorstPixel& p) {
 
 HeatScale heatScale(HeatmapQuantity q) {
   return heatScaleByKey(q == HeatmapQuantity::kUlps ? "ulps" : q == HeatmapQuantity::kBoundRatio ? "bound" : "error");
-}
-
-std::string formatRatio(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", value);
-  return buf;
 }
 
 // "VALUE exceeds LIMIT" (or "VALUE, limit LIMIT") in as few significant digits as tell the two
@@ -418,7 +411,7 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                std::to_string(f.stats.infCount) + " Inf pixels");
     }
     if (f.bounded && !(f.gated <= 1.0)) {
-      report.reasons.push_back(f.name + ": error reaches " + formatRatio(f.gated) + "x its bound at " +
+      report.reasons.push_back(f.name + ": error reaches " + formatNumber(f.gated) + "x its bound at " +
                                formatPixel(f.ratio.worst));
     } else if (!f.bounded) {
       addIfOver(report.reasons, f.name + ": max error ", f.gated, f.threshold,

@@ -88,6 +88,9 @@ struct Thresholds {
   } warn = {};
 };
 
+// Whether a channel family's name ("bary", "depth", "attr.uv") is an attribute's.
+inline bool isAttributeFamily(const std::string& name) { return name != "bary" && name != "depth"; }
+
 struct FamilyReport {
   std::string name;    // "bary", "depth" or "attr.<name>"
   std::string unit;    // "absolute", "relative" (depth) or "absolute" with `range`
@@ -99,7 +102,7 @@ struct FamilyReport {
   FamilyStats ulps;    // errors in float ulps: of 1 (bary), of the value (depth), of the range
   FamilyStats ratio;   // errors / bound, when bounded
 
-  bool isAttribute() const { return name != "bary" && name != "depth"; }
+  bool isAttribute() const { return isAttributeFamily(name); }
 };
 
 // The earlier report a comparison was held to (--baseline, compare/baseline.h), and the factor
