@@ -29,6 +29,7 @@
 #include "core/plane_allocator.h"
 #include "core/preview.h"
 #include "rasterizer/clip.h"
+#include "rasterizer/frame_setups.h"
 #include "rasterizer/setup.h"
 #include "rasterizer/setup_batch.h"
 #include "rasterizer/tile_kernel.h"
@@ -44,6 +45,13 @@ const char* precisionName(Precision precision) {
 }
 const char* depthMappingName(DepthMapping mapping) {
   return mapping == DepthMapping::kInverseW ? "inverse-w" : "standard";
+}
+const char* fillRuleName(FillRule rule) {
+  switch (rule) {
+    case FillRule::kInclusive: return "inclusive";
+    case FillRule::kExclusive: return "exclusive";
+    default: return "top-left";
+  }
 }
 std::string subpixelBitsName(int bits) { return bits == 0 ? "none" : std::to_string(bits); }
 const char* kernelIsaName(KernelIsa isa) {
@@ -541,6 +549,16 @@ struct Pipeline {
     }
   }
 
+  // A wrong fill rule (RasterOptions::fillRule), made by rewriting the set-ups' top-left flags:
+  // every edge owns the centres on it (inclusive) or none does (exclusive).
+  void breakFillRule(SetupBlock<Real>& block) const {
+    constexpr std::uint32_t kEvery = 7u * CoverageSetup<Real>::kNotTopLeft;
+    for (std::size_t i = 0; i < block.coverage.size(); ++i) {
+      CoverageSetup<Real>& c = block.coverage[i];
+      c.flags = options.fillRule == FillRule::kInclusive ? c.flags & ~kEvery : c.flags | kEvery;
+    }
+  }
+
   // Stages 2 and 3: set-ups per block and their bins.
   void setupAndBin(StageTimes& times) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -561,6 +579,7 @@ struct Pipeline {
       block.clipped.clear();
       const std::size_t begin = std::size_t(b) * blockSize;
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
+      if (options.fillRule != FillRule::kTopLeft) breakFillRule(block);
       block.clippedShift = 0.0;
       for (const ClippedTriangle<Real>& t : block.clipped) {
         for (int i = 0; i < 3; ++i) block.clippedShift = std::max(block.clippedShift, rasterShift(t.clip[i], t.raster[i]));
@@ -714,25 +733,40 @@ void checkSubpixelBits(const RasterOptions& options) {
   }
 }
 
+}  // namespace
+
 template <typename Real>
-std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene& scene, const RasterOptions& options) {
+void forEachSetup(const Scene& scene, const RasterOptions& options, const SetupVisitor<Real>& visit) {
+  checkSubpixelBits(options);
   Frame<Real> frame;
   Pipeline<Real> p(scene, options, frame);
   p.transform();
   StageTimes times;
   p.setupAndBin(times);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  std::vector<std::uint32_t> pixels;
   for (const SetupBlock<Real>& block : frame.blocks) {
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
-      pixels.clear();
       const CoverageSetup<Real>& c = block.coverage[i];
       glm::dvec2 raster[3];
       kernel::rasterOfSetup(c, scene.mesh.triangles.data(), frame.raster.data(), block.clipped.data(), raster);
-      kernel::coveredPixelsOf(c, options.subpixelBits, raster, pixels, p.width);
-      for (std::uint32_t pixel : pixels) pairs.emplace_back(block.coverage[i].source.triangle, pixel);
+      visit(c, raster);
     }
   }
+}
+template void forEachSetup<float>(const Scene&, const RasterOptions&, const SetupVisitor<float>&);
+template void forEachSetup<double>(const Scene&, const RasterOptions&, const SetupVisitor<double>&);
+
+namespace {
+
+template <typename Real>
+std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene& scene, const RasterOptions& options) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::vector<std::uint32_t> pixels;
+  const int width = scene.camera.width();
+  forEachSetup<Real>(scene, options, [&](const CoverageSetup<Real>& c, const glm::dvec2 (&raster)[3]) {
+    pixels.clear();
+    kernel::coveredPixelsOf(c, options.subpixelBits, raster, pixels, width);
+    for (std::uint32_t pixel : pixels) pairs.emplace_back(c.source.triangle, pixel);
+  });
   return pairs;
 }
 
@@ -761,6 +795,7 @@ void Rasterizer::render(const Scene& scene, Framebuffer& target) {
   target.attributes["rastercheck.depthMapping"] = depthMappingName(options_.depthMapping);
   target.attributes["rastercheck.kernelIsa"] = kernelIsaName(resolveKernelIsa(options_.isa));
   target.attributes["rastercheck.cull"] = facts.culled ? "back" : "none";
+  target.attributes["rastercheck.fillRule"] = fillRuleName(options_.fillRule);
   char band[32];
   std::snprintf(band, sizeof band, "%.17g", facts.edgeBand);  // exact: compare reads it back
   target.attributes[channels::header::kEdgeBand] = band;

@@ -33,6 +33,14 @@ enum class Culling {
   kNone,  // draw every triangle
 };
 
+// Which pixel centres exactly on an edge a triangle covers. Only the top-left rule is right, and
+// it is the default: two triangles that share an edge never both cover a centre on it, and never
+// both miss one. The other two are wrong on purpose, so that anyone can see the gate fail them
+// (its coverage audit, rasterizer/coverage_audit.h): inclusive covers a centre on any edge
+// (both triangles of a shared edge), exclusive none (holes along every shared edge).
+enum class FillRule { kTopLeft, kInclusive, kExclusive };
+const char* fillRuleName(FillRule rule);
+
 // The instruction set of the pixel kernels. Every level runs the same sequence of IEEE
 // operations lane by lane (no FMA, no approximate reciprocals), so the output bits are the same
 // on every level; auto picks the widest the CPU has.
@@ -61,6 +69,7 @@ struct RasterOptions {
   bool diagnostics = true;  // write bound.bary, bound.depth, edge.dist, depth.tie (compare's gate uses them)
   KernelIsa isa = KernelIsa::kAuto;
   Culling culling = Culling::kAuto;  // changes no pixel a front face wins (docs/rasterizer.md)
+  FillRule fillRule = FillRule::kTopLeft;
   // Resolve a row chunk of several winners in one pass over its lanes (float; tile_gather.h)
   // rather than winner by winner. The same bits either way: off only to test that.
   bool gatheredResolve = true;

@@ -1,0 +1,43 @@
+// The coverage audit: does a frame obey the coverage rules the rasterizer documents, on its own
+// snapped vertices? The reference cannot tell. A pixel centre exactly on an edge that two
+// triangles share is on both as far as a ray is concerned, so the gate's comparison with Embree
+// explains any owner there as an edge-band disagreement, and a rasterizer with a broken fill
+// rule passes it (docs/numerics.md, "The coverage audit").
+//
+// The audit decides every pixel centre again, apart from the tile kernels: for each set-up of
+// the frame (the same transform, clipping, culling and snapping), an exact edge test (int64 on
+// the snapped vertices; without snapping, the exact orientation of the raster positions) and
+// the top-left rule, written from their definitions. Then the depth test: among the triangles
+// that own a centre, the written one must be the nearest, within the depth keys' error bounds.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/framebuffer.h"
+#include "rasterizer/rasterizer.h"
+
+namespace rc {
+
+struct CoverageAudit {
+  std::size_t covered = 0;  // pixels the frame covers
+  std::size_t onEdge = 0;   // of those, centres exactly on an edge of the set-up that owns them:
+                            // the fill rule chose their owner
+  std::size_t notOwned = 0;  // covered by a triangle that does not own the centre
+  std::size_t lost = 0;      // left empty, or to a farther triangle, where a nearer one owns the centre
+  // The first violation of each kind in row order (x < 0: none): the triangle written
+  // (channels::kNoTriangle when empty) and, for a lost pixel, the nearest triangle that owns
+  // the centre.
+  struct Pixel {
+    int x = -1, y = -1;
+    std::uint32_t written = 0, owner = 0;
+  } firstNotOwned, firstLost;
+  double ms = 0.0;  // the audit's wall-clock time
+
+  std::size_t violations() const { return notOwned + lost; }
+};
+
+// Audits `frame`, a frame Rasterizer::render made of `scene` with `options` (its tri.id channel).
+CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame);
+
+}  // namespace rc

@@ -1,0 +1,142 @@
+// The coverage audit (rasterizer/coverage_audit.h): silent on the rasterizer's own frames in
+// every setting, and it finds a wrong fill rule and pixels changed by hand.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/channels.h"
+#include "rasterizer/coverage_audit.h"
+#include "scenes/registry.h"
+#include "tests/test_scenes.h"
+
+namespace rc {
+namespace {
+
+struct Setting {
+  const char* name;
+  RasterOptions options;
+};
+
+std::vector<Setting> settings() {
+  std::vector<Setting> all;
+  for (int bits : {8, 4, 16, 0}) {
+    RasterOptions o;
+    o.subpixelBits = bits;
+    all.push_back({bits == 0 ? "no snapping" : "subpixel bits", o});
+  }
+  RasterOptions twice;
+  twice.precision = Precision::kDouble;
+  all.push_back({"double", twice});
+  RasterOptions affine;
+  affine.interpolation = Interpolation::kAffine;
+  affine.culling = Culling::kNone;
+  affine.depthMapping = DepthMapping::kStandard;
+  all.push_back({"affine, no culling, standard depth", affine});
+  return all;
+}
+
+std::size_t coveredCount(const Framebuffer& frame) {
+  std::size_t n = 0;
+  for (std::uint32_t id : frame.find(channels::kTriangleId)->uints) n += id != channels::kNoTriangle;
+  return n;
+}
+
+TEST(CoverageAudit, FindsNothingInTheRasterizersOwnFrames) {
+  for (const char* spec : {"fans", "edges", "subpixel", "grazing", "nearplane", "zfight", "closed", "huge", "blob:tris=2000"}) {
+    for (const Setting& s : settings()) {
+      const Scene scene = makeBuiltinScene(spec);
+      const Framebuffer frame = rasterize(scene, s.options);
+      const CoverageAudit audit = auditCoverage(scene, s.options, frame);
+      const std::string where = std::string(spec) + ", " + s.name + " " + std::to_string(s.options.subpixelBits);
+      EXPECT_EQ(audit.violations(), 0u) << where << ": first not owned at " << audit.firstNotOwned.x << ","
+                                        << audit.firstNotOwned.y << ", first lost at " << audit.firstLost.x << ","
+                                        << audit.firstLost.y;
+      EXPECT_EQ(audit.covered, coveredCount(frame)) << where;
+      EXPECT_GT(audit.covered, 0u) << where;
+    }
+  }
+}
+
+// The scenes built to put pixel centres on shared edges do, so the fill rule decides pixels there.
+TEST(CoverageAudit, CountsTheCentresTheFillRuleDecides) {
+  for (const char* spec : {"fans", "edges", "subpixel"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    const RasterOptions options;
+    const CoverageAudit audit = auditCoverage(scene, options, rasterize(scene, options));
+    EXPECT_GE(audit.onEdge, 10u) << spec;
+    EXPECT_LT(audit.onEdge, audit.covered) << spec;
+  }
+}
+
+TEST(CoverageAudit, FindsEveryWrongFillRule) {
+  for (const char* spec : {"fans", "edges"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    for (int bits : {8, 4}) {
+      RasterOptions options;
+      options.subpixelBits = bits;
+      const std::size_t onEdge = auditCoverage(scene, options, rasterize(scene, options)).onEdge;
+
+      // Inclusive: both triangles of a shared edge cover the centres on it, and the depth test
+      // keeps one; where it keeps the one the top-left rule does not give them to, a pixel is
+      // written by a triangle that does not own it. (Nothing is lost: the owner covers it too.)
+      options.fillRule = FillRule::kInclusive;
+      Framebuffer frame = rasterize(scene, options);
+      EXPECT_EQ(frame.attributes.at("rastercheck.fillRule"), "inclusive");
+      CoverageAudit audit = auditCoverage(scene, options, frame);
+      EXPECT_GT(audit.notOwned, 0u) << spec << " at " << bits << " bits";
+      EXPECT_LE(audit.notOwned, onEdge) << spec;
+      EXPECT_EQ(audit.lost, 0u) << spec;
+      const CoverageAudit::Pixel& p = audit.firstNotOwned;
+      ASSERT_GE(p.x, 0);
+      EXPECT_EQ(p.written, frame.find(channels::kTriangleId)->uints[std::size_t(p.y) * std::size_t(frame.width()) + std::size_t(p.x)]);
+
+      // Exclusive: neither does; each such centre is left empty or to what lies behind.
+      options.fillRule = FillRule::kExclusive;
+      frame = rasterize(scene, options);
+      audit = auditCoverage(scene, options, frame);
+      EXPECT_EQ(audit.notOwned, 0u) << spec;
+      EXPECT_EQ(audit.lost, onEdge) << spec << " at " << bits << " bits";
+    }
+  }
+}
+
+// Three triangles: 0 in front, 1 behind it over the same pixels, 2 off in a corner.
+Scene layeredScene() {
+  return testing::makeTriangleScene({{-1.5f, -1.5f, 0.0f}, {1.5f, -1.5f, 0.0f}, {0.0f, 1.5f, 0.0f},
+                                     {-1.5f, -1.5f, -1.0f}, {1.5f, -1.5f, -1.0f}, {0.0f, 1.5f, -1.0f},
+                                     {-2.0f, 1.4f, 0.0f}, {-1.8f, 1.4f, 0.0f}, {-1.9f, 1.6f, 0.0f}});
+}
+
+TEST(CoverageAudit, FindsPixelsChangedByHand) {
+  const Scene scene = layeredScene();
+  const RasterOptions options;
+  const Framebuffer correct = rasterize(scene, options);
+  ASSERT_EQ(auditCoverage(scene, options, correct).violations(), 0u);
+  const int x = correct.width() / 2, y = correct.height() / 2;
+  const std::size_t at = std::size_t(y) * std::size_t(correct.width()) + std::size_t(x);
+  ASSERT_EQ(correct.find(channels::kTriangleId)->uints[at], 0u);
+
+  struct Case {
+    std::uint32_t id;
+    std::size_t notOwned, lost;
+  };
+  // The farther triangle, nothing, and a triangle that does not cover the pixel.
+  for (const Case& c : {Case{1, 0, 1}, Case{channels::kNoTriangle, 0, 1}, Case{2, 1, 0}}) {
+    Framebuffer changed = rasterize(scene, options);
+    changed.find(channels::kTriangleId)->uints[at] = c.id;
+    const CoverageAudit audit = auditCoverage(scene, options, changed);
+    EXPECT_EQ(audit.notOwned, c.notOwned) << "tri.id " << c.id;
+    EXPECT_EQ(audit.lost, c.lost) << "tri.id " << c.id;
+    const CoverageAudit::Pixel& p = c.lost ? audit.firstLost : audit.firstNotOwned;
+    EXPECT_EQ(p.x, x);
+    EXPECT_EQ(p.y, y);
+    EXPECT_EQ(p.written, c.id);
+    if (c.lost) {
+      EXPECT_EQ(p.owner, 0u) << "the nearer owner";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rc
