@@ -1,6 +1,7 @@
 // checkScene.
 #include "app/check.h"
 
+#include "core/channels.h"
 #include "core/preview.h"
 #include "raytracer_ref/reference.h"
 
@@ -22,10 +23,40 @@ CheckResult checkScene(const Scene& scene, const RenderSettings& settings,
     addPreview(result.raster);
     addPreview(result.reference);
   }
+  result.audit = auditCoverage(scene, settings.raster, result.raster);
   result.report = compareImages(result.raster, scene.name + " (raster)", result.reference,
                                 scene.name + " (reference)", thresholds,
                                 wantPictures ? &result.heatmap : nullptr, settings.threads);
+  for (std::string& reason : auditReasons(result.audit)) {
+    result.report.reasons.push_back(std::move(reason));
+    result.report.pass = false;
+  }
   return result;
+}
+
+std::vector<std::string> auditReasons(const CoverageAudit& audit) {
+  const auto at = [](const CoverageAudit::Pixel& p) {
+    return "first at (" + std::to_string(p.x) + ", " + std::to_string(p.y) + "): ";
+  };
+  const auto triangle = [](std::uint32_t t) {
+    return t == channels::kNoTriangle ? std::string("nothing") : "triangle " + std::to_string(t);
+  };
+  std::vector<std::string> reasons;
+  if (audit.notOwned > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.notOwned) +
+                      " pixel(s) written by a triangle that does not cover the centre under the top-left rule (" +
+                      at(audit.firstNotOwned) + triangle(audit.firstNotOwned.written) + " written, " +
+                      (audit.firstNotOwned.owner == channels::kNoTriangle ? std::string("no triangle owns it")
+                                                                           : triangle(audit.firstNotOwned.owner) + " owns it") +
+                      ")");
+  }
+  if (audit.lost > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.lost) +
+                      " pixel(s) left empty or to a farther triangle where a nearer one covers the centre (" +
+                      at(audit.firstLost) + triangle(audit.firstLost.written) + " written, " +
+                      triangle(audit.firstLost.owner) + " nearer)");
+  }
+  return reasons;
 }
 
 }  // namespace rc::app

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/options.h"
 #include "compare/compare.h"
 #include "core/framebuffer.h"
+#include "rasterizer/coverage_audit.h"
 
 namespace rc::app {
 
@@ -15,11 +17,16 @@ struct CheckResult {
   Framebuffer raster, reference, heatmap;
   std::size_t triangles = 0;
   double rasterMs = 0.0, referenceMs = 0.0;
+  CoverageAudit audit;  // of `raster`; its violations are among the report's reasons
 };
+
+// The gate's reasons for a coverage audit's violations (none when it found none).
+std::vector<std::string> auditReasons(const CoverageAudit& audit);
 
 // With wantPictures, `raster` and `reference` carry their RGB previews (channels R, G, B) and
 // `heatmap` is made, for the pictures and EXR files; without, none of the three. rasterMs and
 // referenceMs time the renders alone (one cold frame each; the reference's with its BVH build).
+// The raster frame is audited (rasterizer/coverage_audit.h), and a violation fails the gate.
 CheckResult checkScene(const Scene& scene, const RenderSettings& settings,
                        const Thresholds& thresholds, bool wantPictures);
 

@@ -10,6 +10,7 @@
 #include "app/progress.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "raytracer_ref/reference.h"
@@ -29,6 +30,10 @@ struct BenchArgs {
 
 int runBenchCommand(BenchArgs& args) {
   finishRenderSettings(args.settings);
+  if (args.settings.raster.fillRule != FillRule::kTopLeft) {
+    throw usageError(std::string("bench times the top-left fill rule; --fill-rule ") +
+                     fillRuleName(args.settings.raster.fillRule) + " is wrong on purpose, for check to fail");
+  }
   // Speed-ups count against Embree's fastest mode here unless an ISA is pinned: the default
   // pin (for outputs that do not change with the CPU) is not always the fastest.
   if (!args.pinnedIsa) args.settings.reference.isa = fastestEmbreeIsa();

@@ -18,6 +18,7 @@
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
+#include "core/channels.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
@@ -106,6 +107,28 @@ void holdSceneToBaseline(CompareReport& report, const std::string& scene, std::s
   report.settleWarnings();
 }
 
+nlohmann::json auditPixel(const CoverageAudit::Pixel& p) {
+  if (p.x < 0) return nullptr;
+  const auto id = [](std::uint32_t t) { return t == channels::kNoTriangle ? nlohmann::json(nullptr) : nlohmann::json(t); };
+  return {{"x", p.x}, {"y", p.y}, {"written", id(p.written)}, {"owner", id(p.owner)}};
+}
+
+nlohmann::json auditToJson(const CoverageAudit& a) {
+  return {{"covered", a.covered},          {"on_edge", a.onEdge},
+          {"not_owned", a.notOwned},       {"lost", a.lost},
+          {"first_not_owned", auditPixel(a.firstNotOwned)}, {"first_lost", auditPixel(a.firstLost)},
+          {"ms", a.ms}};
+}
+
+// The audit in a line, for --verbose.
+std::string auditLine(const CoverageAudit& a) {
+  return "coverage audit: " + std::to_string(a.covered) + " covered pixels, " + std::to_string(a.onEdge) +
+         " of them with the centre exactly on an edge; " +
+         (a.violations() == 0 ? std::string("each covered by the triangle the top-left rule and the depth test give it")
+                              : std::to_string(a.violations()) + " violation(s)") +
+         " (" + formatNumber(a.ms) + " ms)";
+}
+
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
@@ -168,7 +191,7 @@ int runCheck(CheckArgs& args) {
     for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
     for (const std::string& warning : r.report.warnings) std::printf("    warning: %s\n", warning.c_str());
     warned += !r.report.warnings.empty();
-    if (args.verbose) std::printf("%s\n", reportToTable(r.report).c_str());
+    if (args.verbose) std::printf("%s\n%s\n", reportToTable(r.report).c_str(), auditLine(r.audit).c_str());
     std::fflush(stdout);
     const std::string stem = fileStem(scene.name, stems);
     const ScenePictures pictures = wantPictures ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
@@ -193,6 +216,7 @@ int runCheck(CheckArgs& args) {
                           {"threads", resolveThreadCount(args.settings.threads)},
                           {"raster_ms", r.rasterMs},
                           {"reference_ms", r.referenceMs},
+                          {"coverage_audit", auditToJson(r.audit)},
                           {"report", reportToJson(r.report)}};
     rows.push_back(row);
     junitCases.push_back({scene.name, seconds, r.report.reasons,

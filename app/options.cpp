@@ -113,6 +113,11 @@ void addRenderOptions(CLI::App* command, RenderSettings& s) {
   addChoice<Culling>(command, "--cull", s.raster.culling, {{"auto", Culling::kAuto}, {"none", Culling::kNone}},
                      "rasterizer back faces: auto culls them where they cannot be seen (a closed solid "
                      "wholly beyond the near plane, docs/rasterizer.md), none draws them");
+  addChoice<FillRule>(command, "--fill-rule", s.raster.fillRule,
+                      {{"top-left", FillRule::kTopLeft}, {"inclusive", FillRule::kInclusive},
+                       {"exclusive", FillRule::kExclusive}},
+                      "rasterizer: which pixel centres on an edge a triangle covers; only top-left is right, the others "
+                      "are wrong on purpose, to see the gate fail them");
   command->add_option("--subpixel-bits", s.raster.subpixelBits,
                       "fraction bits of snapped vertex positions used for coverage (1..16), or none: coverage of "
                       "the unsnapped triangle, decided exactly")

@@ -18,6 +18,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 #include <nlohmann/json.hpp>
 
@@ -149,6 +150,46 @@ TEST(Cli, AffineCheckExitsOne) {
   EXPECT_NE(r.output.find("FAIL"), std::string::npos);
 }
 
+// A broken fill rule moves no pixel beyond the edge band, so the comparison with the reference
+// passes it; the coverage audit fails it, names the first pixel, and writes its counts to the
+// JSON report. The right rule passes with the centres it decided counted.
+TEST(Cli, WrongFillRulesFailTheGateThroughTheCoverageAudit) {
+  const rc::testing::TempDir temp;  // removed at the end of the test
+  const std::string json = (temp.path() / "r.json").string();
+  const CliRun right = run("check edges fans -q --json " + json);
+  ASSERT_EQ(right.exitCode, 0) << right.output;
+  const nlohmann::json passed = nlohmann::json::parse(std::ifstream(json));
+  for (const auto& scene : passed["scenes"]) {
+    const auto& audit = scene["coverage_audit"];
+    EXPECT_GT(audit["on_edge"].get<int>(), 10) << audit;
+    EXPECT_EQ(audit["not_owned"], 0) << audit;
+    EXPECT_EQ(audit["lost"], 0) << audit;
+    EXPECT_TRUE(audit["first_not_owned"].is_null()) << audit;
+  }
+  for (const auto& [rule, count, kind] : {std::tuple{"inclusive", "not_owned", "first_not_owned"},
+                                          std::tuple{"exclusive", "lost", "first_lost"}}) {
+    const CliRun wrong = run(std::string("check edges fans -q --fill-rule ") + rule + " --json " + json);
+    EXPECT_EQ(wrong.exitCode, 1) << wrong.output;
+    EXPECT_NE(wrong.output.find("- coverage audit: "), std::string::npos) << wrong.output;
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(report["verdict"], "fail");
+    for (const auto& scene : report["scenes"]) {
+      const auto& audit = scene["coverage_audit"];
+      EXPECT_GT(audit[count].get<int>(), 0) << rule << ": " << audit;
+      EXPECT_GE(audit[kind]["x"].get<int>(), 0) << rule << ": " << audit;
+      EXPECT_EQ(scene["report"]["verdict"], "fail") << rule;
+      EXPECT_NE(scene["report"]["reasons"].dump().find("coverage audit"), std::string::npos) << rule;
+    }
+  }
+  // The rule is recorded, and bench, which times the right one, refuses the others.
+  const std::string out = (temp.path() / "e.exr").string();
+  ASSERT_EQ(run("render edges --fill-rule exclusive -o " + out).exitCode, 0);
+  EXPECT_EQ(rc::readExr(out).attributes.at("rastercheck.fillRule"), "exclusive");
+  const CliRun bench = run("bench edges --fill-rule inclusive");
+  EXPECT_EQ(bench.exitCode, 2) << bench.output;
+  EXPECT_NE(bench.output.find("--fill-rule inclusive"), std::string::npos) << bench.output;
+}
+
 TEST(Cli, MissingInputIsExitFour) {
   const CliRun r = run("compare /nonexistent/a.exr /nonexistent/b.exr");
   EXPECT_EQ(r.exitCode, 4) << r.output;
@@ -160,7 +201,8 @@ TEST(Cli, UsageErrorsAreExitTwo) {
                            "check --max-bary -1", "check --threads -1", "check --mode sideways",
                            "check no-such-scene", "check blob:tris=abc", "render floor",
                            "check --size 0x10", "check --cull front", "check --subpixel-bits 17",
-                           "check --subpixel-bits 0", "check --subpixel-bits nones", "check --subpixel-bits 8.5"}) {
+                           "check --subpixel-bits 0", "check --subpixel-bits nones", "check --subpixel-bits 8.5",
+                           "check --fill-rule bottom-right"}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.exitCode, 2) << "rastercheck " << args << "\n" << r.output;
   }
