@@ -1,6 +1,7 @@
 // checkScene.
 #include "app/check.h"
 
+#include "compare/report.h"
 #include "core/channels.h"
 #include "core/preview.h"
 #include "raytracer_ref/reference.h"
@@ -32,6 +33,14 @@ CheckResult checkScene(const Scene& scene, const RenderSettings& settings,
     result.report.pass = false;
   }
   return result;
+}
+
+std::string auditLine(const CoverageAudit& a) {
+  return "coverage audit: " + std::to_string(a.covered) + " covered pixels, " + std::to_string(a.onEdge) +
+         " of them with the centre exactly on an edge; " +
+         (a.violations() == 0 ? std::string("each covered by the triangle the top-left rule and the depth test give it")
+                              : std::to_string(a.violations()) + " violation(s)") +
+         " (" + formatNumber(a.ms) + " ms)";
 }
 
 std::vector<std::string> auditReasons(const CoverageAudit& audit) {

@@ -20,6 +20,8 @@ struct CheckResult {
   CoverageAudit audit;  // of `raster`; its violations are among the report's reasons
 };
 
+// The audit in a line: its counts and time (check -v, the HTML report).
+std::string auditLine(const CoverageAudit& audit);
 // The gate's reasons for a coverage audit's violations (none when it found none).
 std::vector<std::string> auditReasons(const CoverageAudit& audit);
 

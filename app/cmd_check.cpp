@@ -120,15 +120,6 @@ nlohmann::json auditToJson(const CoverageAudit& a) {
           {"ms", a.ms}};
 }
 
-// The audit in a line, for --verbose.
-std::string auditLine(const CoverageAudit& a) {
-  return "coverage audit: " + std::to_string(a.covered) + " covered pixels, " + std::to_string(a.onEdge) +
-         " of them with the centre exactly on an edge; " +
-         (a.violations() == 0 ? std::string("each covered by the triangle the top-left rule and the depth test give it")
-                              : std::to_string(a.violations()) + " violation(s)") +
-         " (" + formatNumber(a.ms) + " ms)";
-}
-
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
@@ -207,7 +198,7 @@ int runCheck(CheckArgs& args) {
       writePngs(args.report, stem, pictures, outputs);
     }
     allPass = allPass && r.report.pass;
-    reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report});
+    reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report, auditLine(r.audit)});
     nlohmann::json row = {{"scene", scene.name},
                           {"triangles", r.triangles},
                           {"mode", interpolationName(args.settings.raster.interpolation)},

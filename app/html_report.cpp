@@ -71,6 +71,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
        << "\">" << (r.pass ? "PASS" : "FAIL") << "</span></h2>\n";
   html << "<p>" << s.triangles << " triangles, " << r.width << "x" << r.height << "; raster "
        << formatNumber(s.rasterMs) << " ms, reference " << formatNumber(s.referenceMs) << " ms.</p>\n";
+  if (!s.audit.empty()) html << "<p>" << escapeMarkup(s.audit) << ".</p>\n";
   if (r.pass) {
     html << "<p>Every family is within its threshold and no NaN or Inf was seen.</p>\n";
   } else {

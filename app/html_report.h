@@ -16,6 +16,7 @@ struct ReportScene {
   std::size_t triangles = 0;
   double rasterMs = 0.0, referenceMs = 0.0;
   CompareReport report;
+  std::string audit;  // check's coverage audit in a line (auditLine); empty: none
 };
 
 // Writes DIR/index.html (atomically). `settings` is one line describing the run. With bench

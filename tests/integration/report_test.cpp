@@ -67,6 +67,10 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_NE(html.find("all 2 scenes pass the gate"), std::string::npos);
+  // Each scene shows its coverage audit.
+  std::size_t audits = 0;
+  for (std::size_t at = html.find("<p>coverage audit: "); at != std::string::npos; at = html.find("<p>coverage audit: ", at + 1)) ++audits;
+  EXPECT_EQ(audits, 2u);
   // Every src="..." attribute. (A plain search: <regex> drew a dozen -Wmaybe-uninitialized
   // warnings from inside libstdc++ in GCC 12's sanitizer build.)
   int images = 0;
