@@ -65,6 +65,11 @@ std::vector<std::string> auditReasons(const CoverageAudit& audit) {
                       at(audit.firstLost) + triangle(audit.firstLost.written) + " written, " +
                       triangle(audit.firstLost.owner) + " nearer)");
   }
+  if (audit.offGrid > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.offGrid) +
+                      " triangle corner(s) snapped to a grid point other than the one nearest the raster position (first: " +
+                      triangle(audit.firstOffGrid) + ")");
+  }
   return reasons;
 }
 

@@ -116,6 +116,7 @@ nlohmann::json auditPixel(const CoverageAudit::Pixel& p) {
 nlohmann::json auditToJson(const CoverageAudit& a) {
   return {{"covered", a.covered},          {"on_edge", a.onEdge},
           {"not_owned", a.notOwned},       {"lost", a.lost},
+          {"off_grid", a.offGrid},         {"first_off_grid", a.offGrid == 0 ? nlohmann::json(nullptr) : nlohmann::json(a.firstOffGrid)},
           {"first_not_owned", auditPixel(a.firstNotOwned)}, {"first_lost", auditPixel(a.firstLost)},
           {"ms", a.ms}};
 }

@@ -125,11 +125,17 @@ void auditSetup(const CoverageSetup<Real>& c, const Triangle& t, const std::uint
 }
 
 template <typename Real>
-void auditSetups(const Scene& scene, const RasterOptions& options, const std::uint32_t* written, PixelState& state) {
+void auditSetups(const Scene& scene, const RasterOptions& options, const std::uint32_t* written, PixelState& state,
+                 CoverageAudit& audit) {
   const int width = scene.camera.width(), height = scene.camera.height();
   forEachSetup<Real>(scene, options, [&](const CoverageSetup<Real>& c, const glm::dvec2 (&raster)[3]) {
     if (options.subpixelBits != 0) {
-      auditSetup(c, SnappedTriangle(c.x, c.y, options.subpixelBits, width, height), written, width, state);
+      const SnappedTriangle t(c.x, c.y, options.subpixelBits, width, height);
+      if (const int off = cornersOffGrid(c.x, c.y, raster, options.subpixelBits)) {
+        if (audit.offGrid == 0) audit.firstOffGrid = c.source.triangle;
+        audit.offGrid += std::size_t(off);
+      }
+      auditSetup(c, t, written, width, state);
     } else {
       auditSetup(c, ExactTriangle(raster, width, height), written, width, state);
     }
@@ -137,6 +143,16 @@ void auditSetups(const Scene& scene, const RasterOptions& options, const std::ui
 }
 
 }  // namespace
+
+int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::dvec2 (&raster)[3], int bits) {
+  int count = 0;
+  for (int i = 0; i < 3; ++i) {
+    // r 2^bits is exact in double, and so is its difference from an integer below 2^29.
+    const double dx = double(x[i]) - std::ldexp(raster[i].x, bits), dy = double(y[i]) - std::ldexp(raster[i].y, bits);
+    count += !(std::fabs(dx) <= 0.5 && std::fabs(dy) <= 0.5);
+  }
+  return count;
+}
 
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame) {
   const auto start = std::chrono::steady_clock::now();
@@ -147,12 +163,12 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
   const std::uint32_t* written = ids->uints.data();
   const std::size_t n = std::size_t(frame.width()) * std::size_t(frame.height());
   PixelState state(n);
-  if (options.precision == Precision::kFloat) {
-    auditSetups<float>(scene, options, written, state);
-  } else {
-    auditSetups<double>(scene, options, written, state);
-  }
   CoverageAudit audit;
+  if (options.precision == Precision::kFloat) {
+    auditSetups<float>(scene, options, written, state, audit);
+  } else {
+    auditSetups<double>(scene, options, written, state, audit);
+  }
   for (std::size_t p = 0; p < n; ++p) {
     const bool covered = written[p] != channels::kNoTriangle;
     const bool owned = state.flags[p] & PixelState::kOwned;

@@ -9,10 +9,14 @@
 // the snapped vertices; without snapping, the exact orientation of the raster positions) and
 // the top-left rule, written from their definitions. Then the depth test: among the triangles
 // that own a centre, the written one must be the nearest, within the depth keys' error bounds.
+// And the snapping: each snapped vertex must be the grid point nearest its raster position, so
+// that the geometry it audits is the one the edge band (docs/numerics.md) allows for.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+
+#include <glm/glm.hpp>
 
 #include "core/framebuffer.h"
 #include "rasterizer/rasterizer.h"
@@ -25,6 +29,10 @@ struct CoverageAudit {
                             // the fill rule chose their owner
   std::size_t notOwned = 0;  // covered by a triangle that does not own the centre
   std::size_t lost = 0;      // left empty, or to a farther triangle, where a nearer one owns the centre
+  // Corners of set-ups snapped to a grid point other than the one nearest their raster position
+  // (cornersOffGrid), and the first one's triangle.
+  std::size_t offGrid = 0;
+  std::uint32_t firstOffGrid = 0;
   // The first violation of each kind in row order (x < 0: none): the triangle written
   // (channels::kNoTriangle when empty) and, for a lost pixel, the nearest triangle that owns
   // the centre.
@@ -34,8 +42,13 @@ struct CoverageAudit {
   } firstNotOwned, firstLost;
   double ms = 0.0;  // the audit's wall-clock time
 
-  std::size_t violations() const { return notOwned + lost; }
+  std::size_t violations() const { return notOwned + lost + offGrid; }
 };
+
+// How many of a set-up's three corners, snapped to (x[i], y[i]) with `bits` fraction bits, are
+// not the grid point nearest their raster position: farther than half a grid step from it in x
+// or in y (round to nearest; a tie may go either way).
+int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::dvec2 (&raster)[3], int bits);
 
 // Audits `frame`, a frame Rasterizer::render made of `scene` with `options` (its tri.id channel).
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame);

@@ -53,6 +53,7 @@ TEST(CoverageAudit, FindsNothingInTheRasterizersOwnFrames) {
                                         << audit.firstNotOwned.y << ", first lost at " << audit.firstLost.x << ","
                                         << audit.firstLost.y;
       EXPECT_EQ(audit.covered, coveredCount(frame)) << where;
+      EXPECT_EQ(audit.offGrid, 0u) << where;
       EXPECT_GT(audit.covered, 0u) << where;
     }
   }
@@ -99,6 +100,21 @@ TEST(CoverageAudit, FindsEveryWrongFillRule) {
       EXPECT_EQ(audit.lost, onEdge) << spec << " at " << bits << " bits";
     }
   }
+}
+
+TEST(CoverageAudit, HoldsEachCornerToTheGridPointNearestItsRasterPosition) {
+  const int bits = 8;
+  const glm::dvec2 raster[3] = {{10.25, 3.5}, {-7.0 / 3.0, 0.0}, {100.0 + 0.5 / 256.0, 2.0 - 1.0 / 512.0}};
+  // Rounded to nearest (the tie at 100 + 0.5 / 256 either way).
+  const std::int32_t x[3] = {2624, -597, 25601}, y[3] = {896, 0, 512};
+  EXPECT_EQ(cornersOffGrid(x, y, raster, bits), 0);
+  const std::int32_t xTie[3] = {2624, -597, 25600};
+  EXPECT_EQ(cornersOffGrid(xTie, y, raster, bits), 0);
+  // Rounded down (the floor of -597.33 is -598), and one step off in y.
+  const std::int32_t xDown[3] = {2624, -598, 25601}, yOff[3] = {897, 0, 510};
+  EXPECT_EQ(cornersOffGrid(xDown, y, raster, bits), 1);
+  EXPECT_EQ(cornersOffGrid(x, yOff, raster, bits), 2);
+  EXPECT_EQ(cornersOffGrid(xDown, yOff, raster, bits), 3);
 }
 
 // Three triangles: 0 in front, 1 behind it over the same pixels, 2 off in a corner.
