@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "compare/colormap.h"
 #include "compare/report.h"
@@ -116,6 +117,21 @@ double headerNumber(const Framebuffer& fb, const char* key) {
   char* end = nullptr;
   const double value = std::strtod(it->second.c_str(), &end);
   return end && *end == '\0' && std::isfinite(value) && value >= 0.0 ? value : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The depths of the clipping planes a render's camera drew between, from its header's camera
+// line ("... near=N far=F ..."): those finite and above 0; none without the line.
+std::vector<double> clipDepths(const Framebuffer& fb) {
+  std::vector<double> depths;
+  const auto it = fb.attributes.find(channels::header::kCamera);
+  if (it == fb.attributes.end()) return depths;
+  for (const std::string_view key : {" near=", " far="}) {
+    const std::size_t at = it->second.find(key);
+    if (at == std::string::npos) continue;
+    const double depth = std::strtod(it->second.c_str() + at + key.size(), nullptr);
+    if (std::isfinite(depth) && depth > 0.0) depths.push_back(depth);
+  }
+  return depths;
 }
 
 // Spacing of floats at |x| (the smallest subnormal at 0).
@@ -376,6 +392,8 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   if (report.explained) {
     const float* depthTest = test.find(channels::kDepth)->floats.data();
     const float* depthRef = ref.find(channels::kDepth)->floats.data();
+    std::vector<double> clips = clipDepths(test);
+    for (double depth : clipDepths(ref)) clips.push_back(depth);
     for (std::size_t i = 0; i < n; ++i) {
       const PixelClass c = classes[i];
       if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
@@ -391,6 +409,16 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
         const double tieR = tieRef ? double(tieRef[i]) : resolutionRef;
         if (std::fabs(zt - zr) <= (2.0 * tieT + 2.0 * tieR) * std::max(std::fabs(zt), std::fabs(zr))) {
           e = Explanation::kDepthTie;
+        }
+      } else {
+        // One side only, off every edge: a surface at the near or the far plane, which one path
+        // keeps and the other clips, tied within the covering path's resolution there and the
+        // other's header resolution (a missing pixel has none of its own).
+        const double z = t ? depthTest[i] : depthRef[i];
+        const double tie = t ? (tieTest ? double(tieTest[i]) : resolutionTest) + (std::isfinite(resolutionRef) ? resolutionRef : 0.0)
+                             : (tieRef ? double(tieRef[i]) : resolutionRef) + (std::isfinite(resolutionTest) ? resolutionTest : 0.0);
+        for (double clip : clips) {
+          if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
         }
       }
       explanations[i] = e;

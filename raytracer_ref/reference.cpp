@@ -115,6 +115,9 @@ struct ReferenceTracer::Impl {
   EmbreeTriangles triangles;
   EmbreeDevice device;
   EmbreeScene embreeScene;
+  // Some vertex lies nearer than the near plane or beyond the far plane, so a triangle may be
+  // cut by one, and the band tracer measures the distance to the cuts (trace_band.h).
+  bool clipCuts = false;
 
   Impl(const Scene& s, const ReferenceOptions& o)
       : scene(s), options(o), threads(resolveThreadCount(o.threads)),
@@ -122,6 +125,14 @@ struct ReferenceTracer::Impl {
         embreeScene(device, RTC_SCENE_FLAG_ROBUST) {
     triangles = embreeTriangles(scene.mesh, scene.camera, threads);
     buildGeometry(device, embreeScene, scene.mesh, triangles, o.build);
+    const glm::dvec3 eye = scene.camera.spec().eye, forward = scene.camera.forward();
+    for (const glm::vec3& p : scene.mesh.positions) {
+      const double depth = glm::dot(glm::dvec3(p) - eye, forward);
+      if (!(depth >= scene.camera.zNear() && depth <= scene.camera.zFar())) {
+        clipCuts = true;
+        break;
+      }
+    }
   }
 };
 
@@ -168,7 +179,7 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
   const std::vector<std::uint32_t>& source = impl_->triangles.source;
   const std::vector<double> rightOffsets = reference::rightOffsetsOf(camera);
   reference::BandInput input{embreeScene.get(), &camera, &scene.mesh,
-                             source.empty() ? nullptr : source.data(), rightOffsets.data(), {}, {}};
+                             source.empty() ? nullptr : source.data(), rightOffsets.data(), impl_->clipCuts, {}, {}};
   for (const Attribute& a : scene.mesh.attributes) {
     for (int c = 0; c < a.components; ++c) names.push_back(channels::attributeChannel(a.name, c));
     input.attributes.push_back({a.values.data(), a.components});

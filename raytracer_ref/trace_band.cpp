@@ -28,23 +28,46 @@ using lanes::i64x4;
 using lanes::u32x4;
 using lanes::Vec3;
 
-// What a hit needs of its triangle: the frame, and the planes through the eye and each edge
-// for the screen distance to that edge.
+// What a hit needs of its triangle: the frame, and for the screen distance to the nearest edge
+// of what the eye sees of it, planes through the eye: one through each edge, and where the
+// triangle crosses the near or the far plane (the rays start at near and end at far), one
+// through that cut, which is an edge too.
 template <typename V>
 struct HitTriangle {
   TriangleFrame<V> frame;
-  Vec3<V> normal[3];  // of the plane through the origin and the edge opposite vertex i
-  V inPlane[3];       // length of its part in the image plane
+  Vec3<V> normal[5];  // of the plane through the origin and the edge opposite vertex i; 3, 4: the cuts
+  V inPlane[5];       // length of its part in the image plane; 0 for a cut the triangle does not make
+  int planes;         // 3, or 5 where a lane's triangle crosses the near or the far plane
 };
 
 template <std::size_t kWidth, typename V>
-RC_LANES_INLINE HitTriangle<V> hitTriangleOf(const Vec3<V> p[3], const Vec3<V>& origin, const Vec3<V>& forward) {
+RC_LANES_INLINE HitTriangle<V> hitTriangleOf(const Vec3<V> p[3], const Vec3<V>& origin, const Vec3<V>& forward,
+                                             bool clipCuts, double zNear, double zFar) {
   HitTriangle<V> h;
   h.frame = triangleFrame<kWidth>(origin, p[0], p[1], p[2]);
   for (int i = 0; i < 3; ++i) {
     h.normal[i] = lanes::cross(p[(i + 1) % 3] - origin, p[(i + 2) % 3] - origin);
     h.inPlane[i] = lanes::length(h.normal[i] - lanes::dot(h.normal[i], forward) * forward);
   }
+  h.planes = 3;
+  if (!clipCuts) return h;  // no vertex of the mesh nearer than near or beyond far
+  // The triangle's plane n . (x - p0) = 0 meets a ray o + t d (d . forward = 1, so t is the
+  // depth) at t = c / (n . d), c = n . (p0 - o): at depth z where (n - (c / z) forward) . d = 0.
+  const V depth[3] = {lanes::dot(p[0] - origin, forward), lanes::dot(p[1] - origin, forward),
+                      lanes::dot(p[2] - origin, forward)};
+  const V nearest = lanes::stdMin<kWidth>(depth[0], lanes::stdMin<kWidth>(depth[1], depth[2]));
+  const V farthest = lanes::stdMax<kWidth>(depth[0], lanes::stdMax<kWidth>(depth[1], depth[2]));
+  const Vec3<V> n = lanes::cross(h.frame.e1, h.frame.e2);
+  const V c = -lanes::dot(n, h.frame.T);
+  const auto cut = [&](int i, double z, const auto& crosses) __attribute__((always_inline)) {
+    h.normal[i] = n - (c / z) * forward;
+    const V length = lanes::length(h.normal[i] - lanes::dot(h.normal[i], forward) * forward);
+    h.inPlane[i] = lanes::select<kWidth>(crosses, length, V{});
+    return (crosses[0] | crosses[1] | crosses[2] | crosses[3]) != 0;
+  };
+  const bool nearCut = cut(3, zNear, split::less<kWidth>(nearest, zNear));
+  const bool farCut = cut(4, zFar, split::greater<kWidth>(farthest, zFar));  // never with an infinite far
+  h.planes = nearCut || farCut ? 5 : 3;
   return h;
 }
 
@@ -126,10 +149,10 @@ struct Tracer {
       const Vec3<f64x4> p[3] = {cornerOf(mesh, triangle, 0), cornerOf(mesh, triangle, 1),
                                 cornerOf(mesh, triangle, 2)};
       if (shared) {
-        last = hitTriangleOf<kWidth>(p, origin, forward);
+        last = hitTriangleOf<kWidth>(p, origin, forward, in.clipCuts, camera.zNear(), camera.zFar());
         lastTriangle = triangle[first];
       } else {
-        each = hitTriangleOf<kWidth>(p, origin, forward);
+        each = hitTriangleOf<kWidth>(p, origin, forward, in.clipCuts, camera.zNear(), camera.zFar());
         h = &each;
       }
     }
@@ -165,17 +188,19 @@ struct Tracer {
     // [0, 1] only within Embree's band), 2^-23 relative for depth.
     write(kBaryBoundPlane, baryBound + 0x1p-23);
     write(kDepthBoundPlane, depthBound + 0x1p-23);
-    // Screen distance to the edge opposite vertex i: the pixel's direction d against the plane
-    // through the eye and that edge, measured in the image plane d . forward = 1.
+    // Screen distance to the edge opposite vertex i (and to the cuts): the pixel's direction d
+    // against the plane through the eye and that edge, measured in the image plane d . forward = 1.
     f64x4 nearest = infinity;
-    for (int i = 0; i < 3; ++i) {
+    const auto toPlane = [&](int i) __attribute__((always_inline)) {
       const f64x4 length = h->inPlane[i];
       const i64x4 positive = split::greater<kWidth>(length, 0.0);
       const f64x4 distance = lanes::absOf(lanes::dot(d, h->normal[i])) /
                              lanes::select<kWidth>(positive, length, lanes::splat(1.0)) * pixelsPerUnit;
       // std::min(nearest, distance)
       nearest = lanes::select<kWidth>(positive & split::less<kWidth>(distance, nearest), distance, nearest);
-    }
+    };
+    for (int i = 0; i < 3; ++i) toPlane(i);  // a constant count, unrolled
+    if (h->planes == 5) toPlane(3), toPlane(4);
     write(kEdgeDistancePlane, nearest);
     glm::uvec3 tris[kBlock];
     for (int k = 0; k < kBlock; ++k) tris[k] = mesh.triangles[triangle[k]];

@@ -34,6 +34,7 @@ struct BandInput {
   const Mesh* mesh;
   const std::uint32_t* source;  // Embree primID -> mesh triangle; null: the same index
   const double* rightOffsets;   // rightOffsetsOf(camera)
+  bool clipCuts;                // a vertex lies nearer than near or beyond far: measure the cuts
   std::vector<std::uint32_t*> planes;  // each width x height values
   struct Attribute {
     const float* values;  // the mesh's, vertex-major

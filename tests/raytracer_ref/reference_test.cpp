@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/channels.h"
 #include "raytracer_ref/ray_triangle.h"
@@ -173,20 +174,29 @@ Scene resized(Scene scene, int width, int height) {
   return scene;
 }
 
+// The scene with its far plane at depth `far`.
+Scene withFar(Scene scene, double far) {
+  CameraSpec spec = scene.camera.spec();
+  spec.zFar = far;
+  scene.camera = Camera(spec);
+  return scene;
+}
+
 // The band tracer recomputes four pixels at a time, sharing one triangle's frame between
 // block rows. Every value it writes must be the one the formulas of ray_triangle.h give on
 // one double for that pixel's ray and triangle, to the bit.
 TEST(Reference, EachPixelHasTheBitsOfTheOneRayFormulas) {
   for (const Scene& scene : {makeBuiltinScene("attributes"), resized(makeBuiltinScene("blob:tris=200000"), 331, 187),
                              resized(makeBuiltinScene("slivers"), 203, 117), makeBuiltinScene("grazing"),
-                             makeBuiltinScene("huge")}) {
+                             makeBuiltinScene("huge"), resized(makeBuiltinScene("nearplane"), 384, 384),
+                             withFar(makeBuiltinScene("grazing"), 3.0)}) {
     for (bool avx2 : {false, true}) {
       ReferenceOptions o = singleThread();
       o.avx2Recompute = avx2;
       const Framebuffer fb = renderReference(scene, o);
       const Camera& camera = scene.camera;
       const double pixelsPerUnit = camera.height() / (2.0 * camera.tanHalfFovY());
-      int checked = 0, mixed = 0;
+      int checked = 0, mixed = 0, cuts = 0;
       for (int y = 0; y < fb.height(); ++y) {
         for (int x = 0; x < fb.width(); ++x) {
           const std::size_t i = std::size_t(y) * fb.width() + x;
@@ -213,10 +223,25 @@ TEST(Reference, EachPixelHasTheBitsOfTheOneRayFormulas) {
           expect(channels::kDepth, hit.t * glm::dot(ray.direction, camera.forward()));
           expect(channels::kBaryBound, hit.baryBound + 0x1p-23);
           expect(channels::kDepthBound, hit.depthBound + 0x1p-23);
+          // The planes through the eye and each edge, and through the lines where the
+          // triangle's plane crosses the near or the far plane: n - (c / depth) forward.
+          std::vector<glm::dvec3> planes;
+          for (int k = 0; k < 3; ++k) planes.push_back(glm::cross(p[(k + 1) % 3] - ray.origin, p[(k + 2) % 3] - ray.origin));
+          const glm::dvec3 f = camera.forward();
+          const double depth[3] = {glm::dot(p[0] - ray.origin, f), glm::dot(p[1] - ray.origin, f),
+                                   glm::dot(p[2] - ray.origin, f)};
+          const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+          const double offset = -glm::dot(n, ray.origin - p[0]);
+          if (std::min(std::min(depth[0], depth[1]), depth[2]) < camera.zNear()) {
+            planes.push_back(n - (offset / camera.zNear()) * f);
+          }
+          if (std::max(std::max(depth[0], depth[1]), depth[2]) > camera.zFar()) {
+            planes.push_back(n - (offset / camera.zFar()) * f);
+          }
+          cuts += planes.size() > 3;
           double nearest = std::numeric_limits<double>::infinity();
-          for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 normal = glm::cross(p[(k + 1) % 3] - ray.origin, p[(k + 2) % 3] - ray.origin);
-            const double length = glm::length(normal - glm::dot(normal, camera.forward()) * camera.forward());
+          for (const glm::dvec3& normal : planes) {
+            const double length = glm::length(normal - glm::dot(normal, f) * f);
             if (length > 0.0) {
               nearest = std::min(nearest, std::fabs(glm::dot(ray.direction, normal)) / length * pixelsPerUnit);
             }
@@ -237,6 +262,9 @@ TEST(Reference, EachPixelHasTheBitsOfTheOneRayFormulas) {
       }
       EXPECT_GT(checked, 1000) << scene.name;
       EXPECT_GT(mixed, 10) << scene.name;
+      if (scene.name == "nearplane" || std::isfinite(camera.zFar())) {
+        EXPECT_GT(cuts, 100) << scene.name << ": pixels whose triangle the near or far plane cuts";
+      }
     }
   }
 }
