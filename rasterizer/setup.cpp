@@ -135,7 +135,7 @@ void setupShade(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigned i
     s.l0[i] = Real(p.l0[i]);
     s.lx[i] = Real(p.lx[i]);
     s.ly[i] = Real(p.ly[i]);
-    s.edgeHeight[i] = (innerEdges >> i) & 1u ? Real(-1) : Real(p.height[i]);
+    s.edgeHeight[i] = (innerEdges >> i) & 1u ? -Real(p.height[i]) : Real(p.height[i]);  // tile_resolve.h
   }
   const double R = std::max({c.anchorX() - c.minX, c.maxX - c.anchorX(), c.anchorY() - c.minY, c.maxY - c.anchorY(), 0}) + 0.0;
   const double rx[3] = {raster[0].x, raster[1].x, raster[2].x}, ry[3] = {raster[0].y, raster[1].y, raster[2].y};

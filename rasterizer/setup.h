@@ -80,8 +80,8 @@ struct ShadeSetup {
                              // -1 = identity
   Real l0[3], lx[3], ly[3];  // screen-space barycentric planes: l_i = l0 + lx dx + ly dy
   Real w[3], invW[3];        // clip w (= depth) of the vertices and its reciprocal
-  Real edgeHeight[3];        // 1 / |grad l_i|: pixels from l_i = 0 to l_i = 1; -1 for an edge
-                             // inside a clipped polygon, which is no edge of the source
+  Real edgeHeight[3];        // 1 / |grad l_i|: pixels from l_i = 0 to l_i = 1; negated for a
+                             // diagonal inside a clipped polygon (tile_resolve.h's diagnosticsOf)
   float baryBound;           // bound on the barycentrics' error (docs/numerics.md)
   float depthBound;          // bound on depth.z's relative error
 };
@@ -120,7 +120,8 @@ bool setupTriangle(const glm::dvec4 clip[3], const glm::dvec2 raster[3], unsigne
 // float), are in tile_resolve.h and tile_gather.h, evaluated eight pixels at a time:
 //   screen barycentrics  l_i = l0_i + lx_i dx + ly_i dy
 //   depth-test key       key0 + keyX dx + keyY dy (larger is nearer)
-//   edge distance        min over source edges of |l_i| edgeHeight_i
+//   edge distance        min over the edges of |l_i| edgeHeight_i (a polygon's diagonals only
+//                        for a centre across them)
 //   depth tie            5 u (|key0| + |keyX dx| + |keyY dy|) w / keyB: the key's error bound
 //                        (a rounding of each coefficient, product and sum) as the relative
 //                        depth difference the test cannot resolve at depth w.

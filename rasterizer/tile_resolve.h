@@ -105,22 +105,33 @@ RC_KERNEL_INLINE void withComponents(int n, Fn&& fn) {
   }
 }
 
-// The two per-pixel diagnostics (setup.h): the edge distance, the minimum over the source's edges
-// of |l_i| height_i (a height below 0 marks an edge inside a clipped polygon, no source edge),
-// and the depth tie, in Real (tieScale carries the rounding of this evaluation). H is the
+// The two per-pixel diagnostics (setup.h): the edge distance, the minimum over the set-up's edges
+// of |l_i| height_i, and the depth tie, in Real (tieScale carries the rounding of this evaluation). H is the
 // winner's scalars (winner by winner) or each lane's own (the gathered resolve); the operations
 // and their order are the same either way.
 template <std::size_t kWidth, typename V, typename H, typename Real>
 RC_KERNEL_INLINE void diagnosticsOf(const V l[3], const H height[3], const H& key0, const H& keyX, const H& keyY,
                                     const V& dx, const H& dy, const V& depth, Real tieScale, V& edgeDistance,
                                     V& depthTie) {
+  // A height below 0 (-height_i) marks a diagonal inside a clipped polygon: no edge of what is
+  // drawn, so a centre inside the sub-triangle is not near an edge there. A centre outside it
+  // across the diagonal (l_i < 0, covered by snapping) is measured to the diagonal, l_i height_i:
+  // it lies outside the polygon (beyond a cut that meets the diagonal at a vertex) or inside
+  // its neighbour, and snapping moves the diagonal as any edge.
   V nearest = split::splat<kWidth, V>(std::numeric_limits<Real>::infinity());
   for (int i = 0; i < 3; ++i) {
-    const V d = split::select<kWidth>(split::less<kWidth>(l[i], Real(0)), -l[i], l[i]) * height[i];
     if constexpr (std::is_arithmetic_v<H>) {
-      if (!(height[i] < Real(0))) nearest = split::select<kWidth>(split::less<kWidth>(d, nearest), d, nearest);
+      if (!(height[i] < Real(0))) {
+        const V d = split::select<kWidth>(split::less<kWidth>(l[i], Real(0)), -l[i], l[i]) * height[i];
+        nearest = split::select<kWidth>(split::less<kWidth>(d, nearest), d, nearest);
+      } else {
+        const V d = l[i] * height[i];
+        nearest = split::select<kWidth>(split::greater<kWidth>(d, Real(0)) & split::less<kWidth>(d, nearest), d, nearest);
+      }
     } else {
-      nearest = split::select<kWidth>(~split::less<kWidth>(height[i], Real(0)) & split::less<kWidth>(d, nearest), d,
+      const auto inner = split::less<kWidth>(height[i], Real(0));
+      const V d = split::select<kWidth>(split::less<kWidth>(l[i], Real(0)) & ~inner, -l[i], l[i]) * height[i];
+      nearest = split::select<kWidth>((~inner | split::greater<kWidth>(d, Real(0))) & split::less<kWidth>(d, nearest), d,
                                       nearest);
     }
   }
