@@ -68,6 +68,9 @@ std::string settingsLine(const RenderSettings& s) {
   return std::string("rasterizer: ") + interpolationName(s.raster.interpolation) + ", " +
          precisionName(s.raster.precision) + ", " +
          (s.raster.subpixelBits == 0 ? std::string("no snapping") : std::to_string(s.raster.subpixelBits) + " subpixel bits") +
+         (s.raster.fillRule == FillRule::kTopLeft ? std::string()
+                                                  : std::string(", ") + fillRuleName(s.raster.fillRule) +
+                                                        " fill rule (wrong on purpose)") +
          "; reference: Embree " + s.reference.isa + "; " +
          std::to_string(resolveThreadCount(s.threads)) + " threads; rastercheck " RASTERCHECK_VERSION;
 }
@@ -205,6 +208,7 @@ int runCheck(CheckArgs& args) {
                           {"mode", interpolationName(args.settings.raster.interpolation)},
                           {"precision", precisionName(args.settings.raster.precision)},
                           {"subpixel_bits", args.settings.raster.subpixelBits},
+                          {"fill_rule", fillRuleName(args.settings.raster.fillRule)},
                           {"threads", resolveThreadCount(args.settings.threads)},
                           {"raster_ms", r.rasterMs},
                           {"reference_ms", r.referenceMs},

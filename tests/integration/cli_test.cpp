@@ -159,7 +159,9 @@ TEST(Cli, WrongFillRulesFailTheGateThroughTheCoverageAudit) {
   const CliRun right = run("check edges fans -q --json " + json);
   ASSERT_EQ(right.exitCode, 0) << right.output;
   const nlohmann::json passed = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ(passed["settings"].get<std::string>().find("fill rule"), std::string::npos) << passed["settings"];
   for (const auto& scene : passed["scenes"]) {
+    EXPECT_EQ(scene["fill_rule"], "top-left");
     const auto& audit = scene["coverage_audit"];
     EXPECT_GT(audit["on_edge"].get<int>(), 10) << audit;
     EXPECT_EQ(audit["not_owned"], 0) << audit;
@@ -173,7 +175,10 @@ TEST(Cli, WrongFillRulesFailTheGateThroughTheCoverageAudit) {
     EXPECT_NE(wrong.output.find("- coverage audit: "), std::string::npos) << wrong.output;
     const nlohmann::json report = nlohmann::json::parse(std::ifstream(json));
     EXPECT_EQ(report["verdict"], "fail");
+    EXPECT_NE(report["settings"].get<std::string>().find(std::string(rule) + " fill rule (wrong on purpose)"), std::string::npos)
+        << report["settings"];
     for (const auto& scene : report["scenes"]) {
+      EXPECT_EQ(scene["fill_rule"], rule);
       const auto& audit = scene["coverage_audit"];
       EXPECT_GT(audit[count].get<int>(), 0) << rule << ": " << audit;
       EXPECT_GE(audit[kind]["x"].get<int>(), 0) << rule << ": " << audit;
