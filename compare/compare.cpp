@@ -401,24 +401,22 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
       Explanation e = Explanation::kUnexplained;
       if ((t && double(edgeTest[i]) <= report.edgeBand) || (r && double(edgeRef[i]) <= report.edgeBand)) {
         e = Explanation::kEdgeBand;
-      } else if (t && r) {
-        // The winner's own depth-test resolution is known here; the loser's is taken to be at
-        // most as large again (the factor 2), the other path's is added.
-        const double zt = depthTest[i], zr = depthRef[i];
-        const double tieT = tieTest ? double(tieTest[i]) : resolutionTest;
-        const double tieR = tieRef ? double(tieRef[i]) : resolutionRef;
-        if (std::fabs(zt - zr) <= (2.0 * tieT + 2.0 * tieR) * std::max(std::fabs(zt), std::fabs(zr))) {
-          e = Explanation::kDepthTie;
-        }
       } else {
-        // One side only, off every edge: a surface at the near or the far plane, which one path
-        // keeps and the other clips, tied within the covering path's resolution there and the
-        // other's header resolution (a missing pixel has none of its own).
-        const double z = t ? depthTest[i] : depthRef[i];
-        const double tie = t ? (tieTest ? double(tieTest[i]) : resolutionTest) + (std::isfinite(resolutionRef) ? resolutionRef : 0.0)
-                             : (tieRef ? double(tieRef[i]) : resolutionRef) + (std::isfinite(resolutionTest) ? resolutionTest : 0.0);
-        for (double clip : clips) {
-          if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
+        // Each path's depth-test resolution at the pixel: its depth.tie there (0 where it drew
+        // nothing), else its header's.
+        const double tie = (tieTest ? double(tieTest[i]) : resolutionTest) + (tieRef ? double(tieRef[i]) : resolutionRef);
+        if (t && r) {
+          // The winner's own resolution is known here; the loser's is taken to be at most as
+          // large again (the factor 2), the other path's is added.
+          const double zt = depthTest[i], zr = depthRef[i];
+          if (std::fabs(zt - zr) <= 2.0 * tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
+        } else {
+          // One side only, off every edge: a surface at the near or the far plane, which one
+          // path keeps and the other clips, tied with that plane within the same tolerance.
+          const double z = t ? depthTest[i] : depthRef[i];
+          for (double clip : clips) {
+            if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
+          }
         }
       }
       explanations[i] = e;
