@@ -1,0 +1,120 @@
+#!/usr/bin/perl
+# The gate's teeth against wrong rasterizers: for each mutant in tests/mutants.txt (a realistic
+# bug, as a literal edit of the rasterizer's source), apply it, rebuild rastercheck, and require
+# `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. Every
+# file is restored afterwards, whatever happens, and rastercheck rebuilt from the clean source.
+#
+#   scripts/mutants.pl [--build DIR] [--list FILE] [NAME...]
+#     DIR: $RASTERCHECK_BUILD_DIR or build; FILE: tests/mutants.txt; NAME: only these mutants
+#
+# The unmutated build must pass first, or a failure would prove nothing. An edit that no longer
+# matches the source exactly once, or a mutant that does not compile, stops the run: the list
+# must follow the code. Exit 0 when every mutant failed the gate, 1 when one passed (it is
+# named), 2 when the run itself could not be done. Perl from perl-base: no modules beyond it.
+use strict;
+use warnings;
+
+sub stop { print STDERR "mutants: $_[0]\n"; exit 2; }
+my $root = $0 =~ s{/[^/]*$}{}r . "/..";
+chdir $root or stop("cannot enter $root: $!");
+my $build = $ENV{RASTERCHECK_BUILD_DIR} || "build";
+my $list = "tests/mutants.txt";
+my @only;
+while (@ARGV) {
+  my $a = shift @ARGV;
+  if ($a eq "--build") { $build = shift @ARGV // stop("--build needs a directory"); }
+  elsif ($a eq "--list") { $list = shift @ARGV // stop("--list needs a file"); }
+  else { push @only, $a; }
+}
+my $jobs = `nproc` =~ s/\s+//gr || 2;
+
+$| = 1;
+my $mutated_build = 0;  # the build dir holds a mutant's rastercheck
+sub fail_run {
+  print STDERR "mutants: $_[0]\n";
+  restore();
+  system("cmake --build \"$build\" --target rastercheck -j $jobs > /dev/null 2>&1") if $mutated_build;
+  exit 2;
+}
+
+# Parse the list: mutant NAME / what TEXT / check ARGS / edit FILE / -LINE / +LINE.
+my (@mutants, $m, $e);
+open(my $in, "<", $list) or stop("cannot read $list: $!");
+while (my $line = <$in>) {
+  chomp $line;
+  next if $line =~ /^\s*(#|$)/;
+  if ($line =~ /^mutant\s+(\S+)$/) { $m = {name => $1, what => "", check => "default hard", edits => []}; push @mutants, $m; $e = undef; }
+  elsif ($line =~ /^what\s+(.*)$/ && $m) { $m->{what} .= ($m->{what} ? " " : "") . $1; }
+  elsif ($line =~ /^check\s+(.*)$/ && $m) { $m->{check} = $1; }
+  elsif ($line =~ /^edit\s+(\S+)$/ && $m) { $e = {file => $1, from => undef, to => undef}; push @{$m->{edits}}, $e; }
+  elsif ($line =~ /^([-+])(?: (.*))?$/ && $e) {
+    my $key = $1 eq "-" ? "from" : "to";
+    $e->{$key} = defined $e->{$key} ? "$e->{$key}\n" . ($2 // "") : ($2 // "");
+  }
+  else { stop("$list:$.: cannot read '$line'"); }
+}
+close $in;
+@mutants = grep { my $n = $_->{name}; !@only || grep { $_ eq $n } @only } @mutants;
+stop("no mutant in $list matches @only") unless @mutants;
+
+my %original;  # file -> its clean text, while a mutant is applied
+sub slurp { my ($f) = @_; open(my $h, "<", $f) or fail_run("cannot read $f: $!"); local $/; my $t = <$h>; close $h; return $t; }
+sub spit { my ($f, $t) = @_; open(my $h, ">", $f) or stop("cannot write $f: $!"); print $h $t; close $h; }
+sub restore { for my $f (keys %original) { spit($f, $original{$f}); } %original = (); }
+END { restore() if %original; }
+$SIG{INT} = $SIG{TERM} = sub { restore(); exit 2; };
+
+sub build {
+  my $out = `cmake --build "$build" --target rastercheck -j $jobs 2>&1`;
+  return ($? == 0, $out);
+}
+# Runs the gate; returns (exit code, failing scenes, first reason).
+sub gate {
+  my ($args) = @_;
+  my $out = `"$build/app/rastercheck" check $args -q 2>&1`;
+  my $code = $? >> 8;
+  my @failing = map { (split ' ', $_)[0] } grep { / FAIL / } split /\n/, $out;
+  my ($reason) = $out =~ /^\s+- (.*)$/m;
+  return ($code, \@failing, $reason // "");
+}
+
+my ($ok, $log) = build();
+fail_run("the clean source does not build:\n$log") unless $ok;
+my %clean;
+for my $args (map { $_->{check} } @mutants) {
+  next if $clean{$args}++;
+  my ($code, $failing) = gate($args);
+  fail_run("the clean build fails `check $args` (exit $code: @$failing); mutants would prove nothing") if $code != 0;
+}
+printf "clean build: `check %s` pass%s\n", join("`, `check ", sort keys %clean), keys %clean > 1 ? "" : "es";
+
+my @survivors;
+for my $mut (@mutants) {
+  for my $edit (@{$mut->{edits}}) {
+    my $f = $edit->{file};
+    fail_run("$list: mutant $mut->{name}: an edit of $f lacks its - or + lines") unless defined $edit->{from} && defined $edit->{to};
+    $original{$f} //= slurp($f);
+    my $text = slurp($f);  # as an earlier edit of this mutant left it
+    my $count = () = $text =~ /\Q$edit->{from}\E/g;
+    fail_run("mutant $mut->{name}: its edit of $f matches $count times, not once; update $list to the code") if $count != 1;
+    $text =~ s/\Q$edit->{from}\E/$edit->{to}/;
+    spit($f, $text);
+  }
+  my ($built, $out) = build();
+  $mutated_build = 1;
+  if (!$built) { restore(); fail_run("mutant $mut->{name} does not compile; update $list:\n$out"); }
+  my ($code, $failing, $reason) = gate($mut->{check});
+  restore();
+  my $verdict = $code == 1 ? "failed the gate" : $code == 0 ? "PASSED THE GATE" : "exit $code (not the gate's 1)";
+  printf "%-28s %s: %d scene(s) of `check %s` fail%s\n    (%s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{check},
+    @$failing ? ", e.g. $failing->[0]: $reason" : "", $mut->{what};
+  push @survivors, $mut->{name} if $code != 1;
+}
+($ok, $log) = build();
+fail_run("the restored source does not build:\n$log") unless $ok;
+if (@survivors) {
+  print "mutants: the gate did not fail ", scalar @survivors, " of ", scalar @mutants, ": @survivors\n";
+  exit 1;
+}
+print "mutants: the gate failed all ", scalar @mutants, "\n";
+exit 0;
