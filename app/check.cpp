@@ -40,6 +40,8 @@ std::string auditLine(const CoverageAudit& a) {
          " of them with the centre exactly on an edge; " +
          (a.violations() == 0 ? std::string("each covered by the triangle the top-left rule and the depth test give it")
                               : std::to_string(a.violations()) + " violation(s)") +
+         (a.diagnosed == 0 ? std::string("; no diagnostics")
+                           : "; edge.dist and depth.tie checked at " + std::to_string(a.diagnosed) + " pixels") +
          " (" + formatNumber(a.ms) + " ms)";
 }
 
@@ -69,6 +71,23 @@ std::vector<std::string> auditReasons(const CoverageAudit& audit) {
     reasons.push_back("coverage audit: " + std::to_string(audit.offGrid) +
                       " triangle corner(s) snapped to a grid point other than the one nearest the raster position (first: " +
                       triangle(audit.firstOffGrid) + ")");
+  }
+  const auto diagnostic = [](const CoverageAudit::Diagnostic& d, const char* unit) {
+    return "first found at (" + std::to_string(d.x) + ", " + std::to_string(d.y) + "), triangle " +
+           std::to_string(d.triangle) + ": " + formatNumber(d.written) + unit + " written, " + formatNumber(d.audited) +
+           unit;
+  };
+  if (audit.edgeDistanceShort > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.edgeDistanceShort) +
+                      " pixel(s) whose edge.dist falls short of the centre's distance from its triangle's edges, "
+                      "which would explain away disagreements (" +
+                      diagnostic(audit.firstEdgeDistanceShort, " px") + " from the edges)");
+  }
+  if (audit.depthTieWide > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.depthTieWide) +
+                      " pixel(s) whose depth.tie exceeds its depth key's error bound, which would explain away "
+                      "disagreements (" +
+                      diagnostic(audit.firstDepthTieWide, "") + " the bound)");
   }
   return reasons;
 }

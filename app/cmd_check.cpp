@@ -116,11 +116,21 @@ nlohmann::json auditPixel(const CoverageAudit::Pixel& p) {
   return {{"x", p.x}, {"y", p.y}, {"written", id(p.written)}, {"owner", id(p.owner)}};
 }
 
+nlohmann::json auditDiagnostic(std::size_t count, const CoverageAudit::Diagnostic& d) {
+  if (count == 0) return nullptr;
+  return {{"x", d.x}, {"y", d.y}, {"triangle", d.triangle}, {"written", d.written}, {"audited", d.audited}};
+}
+
 nlohmann::json auditToJson(const CoverageAudit& a) {
   return {{"covered", a.covered},          {"on_edge", a.onEdge},
           {"not_owned", a.notOwned},       {"lost", a.lost},
           {"off_grid", a.offGrid},         {"first_off_grid", a.offGrid == 0 ? nlohmann::json(nullptr) : nlohmann::json(a.firstOffGrid)},
           {"first_not_owned", auditPixel(a.firstNotOwned)}, {"first_lost", auditPixel(a.firstLost)},
+          {"diagnosed", a.diagnosed},
+          {"edge_distance_short", a.edgeDistanceShort},
+          {"first_edge_distance_short", auditDiagnostic(a.edgeDistanceShort, a.firstEdgeDistanceShort)},
+          {"depth_tie_wide", a.depthTieWide},
+          {"first_depth_tie_wide", auditDiagnostic(a.depthTieWide, a.firstDepthTieWide)},
           {"ms", a.ms}};
 }
 

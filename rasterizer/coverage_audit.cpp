@@ -96,29 +96,115 @@ struct PixelState {
         otherLow(n, -std::numeric_limits<double>::infinity()), otherOwner(n, channels::kNoTriangle) {}
 };
 
+// The frame's diagnostic planes, null when it has none.
+struct Diagnostics {
+  const float* edgeDistance = nullptr;
+  const float* depthTie = nullptr;
+  const float* depth = nullptr;
+};
+
+// A set-up's unsnapped edges, for the edge distances: the distance of p from edge i, signed
+// (positive inside), is E_i(p) sign(area) / |edge i|, with E_i the edge function of the double
+// raster positions, the planes' l_i = E_i / area times the edge height |area| / |edge i|.
+struct UnsnappedEdges {
+  glm::dvec2 v[3];
+  double scale[3] = {};  // sign(area) / |edge i|; 0: a triangle of zero area (no set-up has one)
+  unsigned inner = 0;
+  double R = 0.0;         // the largest pixel offset from the anchor in the box
+  double ownError = 0.0;  // of signedDistance, in double, for a centre in the image
+
+  template <typename Real>
+  explicit UnsnappedEdges(const VisitedSetup<Real>& s) : inner(s.innerEdges) {
+    for (int i = 0; i < 3; ++i) v[i] = s.raster[i];
+    const double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    double longest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double length = glm::length(v[(i + 2) % 3] - v[(i + 1) % 3]);
+      longest = std::max(longest, length);
+      if (area != 0.0 && length > 0.0) scale[i] = (area > 0.0 ? 1.0 : -1.0) / length;
+    }
+    const CoverageSetup<Real>& c = s.coverage;
+    const int ax = c.anchorX(), ay = c.anchorY();
+    R = std::max({ax - c.minX, c.maxX - ax, ay - c.minY, c.maxY - ay, 0});
+    // A cross product of differences, each a few roundings of magnitudes up to the centre's
+    // distance from a vertex (at most the image's diagonal plus the vertex's own magnitude) and
+    // the longest edge.
+    const double reach = 2.0 * (s.context.width + s.context.height) + glm::length(v[0]) + 2.0 * longest;
+    ownError = 64.0 * 0x1p-53 * reach;
+  }
+  double signedDistance(int i, double px, double py) const {
+    const glm::dvec2 from = v[(i + 1) % 3], to = v[(i + 2) % 3];
+    return ((to.x - from.x) * (py - from.y) - (to.y - from.y) * (px - from.x)) * scale[i];
+  }
+};
+
+// The pixel's diagnostics against the set-up that owns it. The rasterizer evaluates l_i
+// |grad l_i|^-1 in Real from planes anchored at the box's centre: its error is under 4 u (|l0| h
+// + 2 R) + 2 u d pixels (docs/numerics.md, "The rasterizer's bound", with |l0| h <= d + 2 R),
+// counted here as 16 u (d + 2 R + 1), plus the float output's 2^-23 d and this double
+// evaluation's own error. A diagonal inside a clipped polygon counts only for a centre beyond
+// it (tile_resolve.h's diagnosticsOf), here as soon as the centre may be beyond it.
+template <typename Real>
+void auditDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, int px, int py, std::size_t p,
+                      double keyTerms, const Diagnostics& diag, CoverageAudit& audit) {
+  const double u = s.context.unitRoundoff, R = edges.R, ownError = edges.ownError;
+  const double cx = px + 0.5, cy = py + 0.5;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    if (edges.scale[i] == 0.0) return;
+    const double d = edges.signedDistance(i, cx, cy);
+    if (edges.inner & (1u << i)) {
+      const double slack = 16.0 * u * (std::fabs(d) + 2.0 * R + 1.0) + ownError;
+      if (d < slack) nearest = std::min(nearest, std::max(d, 0.0));
+    } else {
+      nearest = std::min(nearest, std::fabs(d));
+    }
+  }
+  ++audit.diagnosed;
+  const double tolerance = 16.0 * u * (nearest + 2.0 * R + 1.0) + 0x1p-23 * nearest + ownError;
+  const double written = diag.edgeDistance[p];
+  if (!(written >= nearest - tolerance)) {
+    if (audit.edgeDistanceShort++ == 0) audit.firstEdgeDistanceShort = {px, py, s.coverage.source.triangle, written, nearest};
+  }
+  // depth.tie: 5 u (|key0| + |keyX dx| + |keyY dy|) depth / keyB, times 1 + 2^-16 for its own
+  // roundings (rasterizer.cpp's tieScale); here in double, from the depth written, which lies
+  // within 2^-24 of the one the rasterizer multiplied by.
+  const double tie = 5.0 * u / s.context.keyB * (1.0 + 0x1p-16) * keyTerms * double(diag.depth[p]);
+  const double wide = tie * (1.0 + 16.0 * u + 0x1p-22);
+  const double tieWritten = diag.depthTie[p];
+  if (!(tieWritten <= wide)) {
+    if (audit.depthTieWide++ == 0) audit.firstDepthTieWide = {px, py, s.coverage.source.triangle, tieWritten, tie};
+  }
+}
+
 template <typename Real, typename Triangle>
-void auditSetup(const CoverageSetup<Real>& c, const Triangle& t, const std::uint32_t* written, int width, PixelState& state) {
+void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint32_t* written, int width,
+                const Diagnostics& diag, PixelState& state, CoverageAudit& audit) {
   if (t.orientation == 0) return;
+  const CoverageSetup<Real>& c = s.coverage;
+  const UnsnappedEdges edges(s);
   // The depth key the tile kernels compute in Real, here in double, and the bound on their
   // error (setup.h: 5 u (|key0| + |keyX dx| + |keyY dy|)).
-  constexpr double u = std::is_same_v<Real, float> ? 0x1p-24 : 0x1p-53;
+  const double u = s.context.unitRoundoff;
   const double key0 = c.key0, keyX = c.keyX, keyY = c.keyY;
   const int anchorX = c.anchorX(), anchorY = c.anchorY();
   for (int py = t.y0; py <= t.y1; ++py) {
     for (int px = t.x0; px <= t.x1; ++px) {
       bool inside = true, onEdge = false;
       for (int i = 0; i < 3 && inside; ++i) {
-        const int s = t.side(i, px, py);
-        inside = s > 0 || (s == 0 && t.topLeft[i]);
-        onEdge = onEdge || s == 0;
+        const int side = t.side(i, px, py);
+        inside = side > 0 || (side == 0 && t.topLeft[i]);
+        onEdge = onEdge || side == 0;
       }
       if (!inside) continue;
       const double kx = keyX * (px - anchorX), ky = keyY * (py - anchorY);
-      const double key = key0 + kx + ky, bound = 5.0 * u * (std::fabs(key0) + std::fabs(kx) + std::fabs(ky));
+      const double terms = std::fabs(key0) + std::fabs(kx) + std::fabs(ky);
+      const double key = key0 + kx + ky, bound = 5.0 * u * terms;
       const std::size_t p = std::size_t(py) * std::size_t(width) + std::size_t(px);
       if (c.source.triangle == written[p]) {
         state.flags[p] |= PixelState::kOwned | (onEdge ? PixelState::kOnEdge : 0);
         state.writtenHigh[p] = std::max(state.writtenHigh[p], key + bound);
+        if (diag.edgeDistance) auditDiagnostics(s, edges, px, py, p, terms, diag, audit);
       } else if (key - bound > state.otherLow[p]) {
         state.otherLow[p] = key - bound;
         state.otherOwner[p] = c.source.triangle;
@@ -128,19 +214,20 @@ void auditSetup(const CoverageSetup<Real>& c, const Triangle& t, const std::uint
 }
 
 template <typename Real>
-void auditSetups(const Scene& scene, const RasterOptions& options, const std::uint32_t* written, PixelState& state,
-                 CoverageAudit& audit) {
+void auditSetups(const Scene& scene, const RasterOptions& options, const std::uint32_t* written,
+                 const Diagnostics& diag, PixelState& state, CoverageAudit& audit) {
   const int width = scene.camera.width(), height = scene.camera.height();
-  forEachSetup<Real>(scene, options, [&](const CoverageSetup<Real>& c, const glm::dvec2 (&raster)[3]) {
+  forEachSetup<Real>(scene, options, [&](const VisitedSetup<Real>& s) {
+    const CoverageSetup<Real>& c = s.coverage;
     if (options.subpixelBits != 0) {
       const SnappedTriangle t(c.x, c.y, options.subpixelBits, width, height);
-      if (const int off = cornersOffGrid(c.x, c.y, raster, options.subpixelBits)) {
+      if (const int off = cornersOffGrid(c.x, c.y, s.raster, options.subpixelBits)) {
         if (audit.offGrid == 0) audit.firstOffGrid = c.source.triangle;
         audit.offGrid += std::size_t(off);
       }
-      auditSetup(c, t, written, width, state);
+      auditSetup(s, t, written, width, diag, state, audit);
     } else {
-      auditSetup(c, ExactTriangle(raster, width, height), written, width, state);
+      auditSetup(s, ExactTriangle(s.raster, width, height), written, width, diag, state, audit);
     }
   });
 }
@@ -167,10 +254,17 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
   const std::size_t n = std::size_t(frame.width()) * std::size_t(frame.height());
   PixelState state(n);
   CoverageAudit audit;
+  Diagnostics diag;
+  const Channel* edgeDistance = frame.find(channels::kEdgeDistance);
+  const Channel* depthTie = frame.find(channels::kDepthTie);
+  const Channel* depth = frame.find(channels::kDepth);
+  if (edgeDistance && depthTie && depth) {
+    diag = {edgeDistance->floats.data(), depthTie->floats.data(), depth->floats.data()};
+  }
   if (options.precision == Precision::kFloat) {
-    auditSetups<float>(scene, options, written, state, audit);
+    auditSetups<float>(scene, options, written, diag, state, audit);
   } else {
-    auditSetups<double>(scene, options, written, state, audit);
+    auditSetups<double>(scene, options, written, diag, state, audit);
   }
   for (std::size_t p = 0; p < n; ++p) {
     const bool covered = written[p] != channels::kNoTriangle;

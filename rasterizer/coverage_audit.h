@@ -11,6 +11,11 @@
 // that own a centre, the written one must be the nearest, within the depth keys' error bounds.
 // And the snapping: each snapped vertex must be the grid point nearest its raster position, so
 // that the geometry it audits is the one the edge band (docs/numerics.md) allows for.
+// Last, the two diagnostics the gate explains disagreements by (docs/channels.md): each pixel's
+// edge.dist must not fall short of its centre's distance from the edges of the set-up that owns
+// it, and its depth.tie must not exceed that set-up's depth-key error bound. Both are the
+// rasterizer's own word, and a diagnostic too lenient would change no pixel and explain away
+// whatever the comparison should fail.
 #pragma once
 
 #include <cstddef>
@@ -40,9 +45,20 @@ struct CoverageAudit {
     int x = -1, y = -1;
     std::uint32_t written = 0, owner = 0;
   } firstNotOwned, firstLost;
+  // Covered pixels whose diagnostics were checked (0 for a frame without them), those whose
+  // edge.dist is shorter than the centre's distance from the owning set-up's edges, and those
+  // whose depth.tie is wider than its depth key's bound; each beyond the rounding of the
+  // rasterizer's own evaluation. The first found of each, with the value written and the
+  // audit's.
+  std::size_t diagnosed = 0, edgeDistanceShort = 0, depthTieWide = 0;
+  struct Diagnostic {
+    int x = -1, y = -1;
+    std::uint32_t triangle = 0;
+    double written = 0.0, audited = 0.0;
+  } firstEdgeDistanceShort, firstDepthTieWide;
   double ms = 0.0;  // the audit's wall-clock time
 
-  std::size_t violations() const { return notOwned + lost + offGrid; }
+  std::size_t violations() const { return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide; }
 };
 
 // How many of a set-up's three corners, snapped to (x[i], y[i]) with `bits` fraction bits, are

@@ -11,11 +11,19 @@
 
 namespace rc {
 
-// Visits the set-up of every (sub-)triangle a frame of `scene` would rasterize, in set-up order:
-// the transform, clipping, culling and snapping of Rasterizer::render, with its raster positions
-// (unsnapped: the vertices', or a clipped sub-triangle's own).
+// One set-up of a frame as forEachSetup visits it.
 template <typename Real>
-using SetupVisitor = std::function<void(const CoverageSetup<Real>&, const glm::dvec2 (&raster)[3])>;
+struct VisitedSetup {
+  const CoverageSetup<Real>& coverage;
+  glm::dvec2 raster[3];    // unsnapped: the vertices', or a clipped sub-triangle's own
+  unsigned innerEdges;     // bit i: edge i (opposite vertex i) is a diagonal inside a clipped polygon
+  const SetupContext& context;
+};
+
+// Visits the set-up of every (sub-)triangle a frame of `scene` would rasterize, in set-up order:
+// the transform, clipping, culling and snapping of Rasterizer::render.
+template <typename Real>
+using SetupVisitor = std::function<void(const VisitedSetup<Real>&)>;
 
 template <typename Real>
 void forEachSetup(const Scene& scene, const RasterOptions& options, const SetupVisitor<Real>& visit);

@@ -746,9 +746,10 @@ void forEachSetup(const Scene& scene, const RasterOptions& options, const SetupV
   for (const SetupBlock<Real>& block : frame.blocks) {
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
       const CoverageSetup<Real>& c = block.coverage[i];
-      glm::dvec2 raster[3];
-      kernel::rasterOfSetup(c, scene.mesh.triangles.data(), frame.raster.data(), block.clipped.data(), raster);
-      visit(c, raster);
+      VisitedSetup<Real> v{c, {}, c.source.clipped < 0 ? 0u : block.clipped[std::size_t(c.source.clipped)].innerEdges,
+                           p.context};
+      kernel::rasterOfSetup(c, scene.mesh.triangles.data(), frame.raster.data(), block.clipped.data(), v.raster);
+      visit(v);
     }
   }
 }
@@ -762,10 +763,10 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> coveredPixelsAs(const Scene
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::uint32_t> pixels;
   const int width = scene.camera.width();
-  forEachSetup<Real>(scene, options, [&](const CoverageSetup<Real>& c, const glm::dvec2 (&raster)[3]) {
+  forEachSetup<Real>(scene, options, [&](const VisitedSetup<Real>& v) {
     pixels.clear();
-    kernel::coveredPixelsOf(c, options.subpixelBits, raster, pixels, width);
-    for (std::uint32_t pixel : pixels) pairs.emplace_back(c.source.triangle, pixel);
+    kernel::coveredPixelsOf(v.coverage, options.subpixelBits, v.raster, pixels, width);
+    for (std::uint32_t pixel : pixels) pairs.emplace_back(v.coverage.source.triangle, pixel);
   });
   return pairs;
 }

@@ -140,5 +140,28 @@ TEST(Gate, DoublePrecisionRasterizerReproducesTheReference) {
   }
 }
 
+// The gate's reasons for diagnostics the audit finds too lenient name the kind, the count, and
+// the first pixel with both values.
+TEST(Gate, NamesEachDiagnosticTheAuditFindsTooLenient) {
+  CoverageAudit audit;
+  audit.diagnosed = 100;
+  audit.edgeDistanceShort = 3;
+  audit.firstEdgeDistanceShort = {5, 7, 42, 0.125, 0.25};
+  audit.depthTieWide = 1;
+  audit.firstDepthTieWide = {6, 8, 43, 4e-5, 4e-6};
+  const std::vector<std::string> reasons = app::auditReasons(audit);
+  ASSERT_EQ(reasons.size(), 2u);
+  EXPECT_EQ(reasons[0],
+            "coverage audit: 3 pixel(s) whose edge.dist falls short of the centre's distance from its triangle's "
+            "edges, which would explain away disagreements (first found at (5, 7), triangle 42: 0.125 px written, "
+            "0.25 px from the edges)");
+  EXPECT_EQ(reasons[1],
+            "coverage audit: 1 pixel(s) whose depth.tie exceeds its depth key's error bound, which would explain "
+            "away disagreements (first found at (6, 8), triangle 43: 4e-05 written, 4e-06 the bound)");
+  EXPECT_NE(app::auditLine(audit).find("4 violation(s); edge.dist and depth.tie checked at 100 pixels"),
+            std::string::npos)
+      << app::auditLine(audit);
+}
+
 }  // namespace
 }  // namespace rc

@@ -1,5 +1,6 @@
 // The coverage audit (rasterizer/coverage_audit.h): silent on the rasterizer's own frames in
-// every setting, and it finds a wrong fill rule and pixels changed by hand.
+// every setting, and it finds a wrong fill rule, pixels changed by hand, and diagnostics more
+// lenient than the frame's geometry allows.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -53,6 +54,7 @@ TEST(CoverageAudit, FindsNothingInTheRasterizersOwnFrames) {
                                         << audit.firstNotOwned.y << ", first lost at " << audit.firstLost.x << ","
                                         << audit.firstLost.y;
       EXPECT_EQ(audit.covered, coveredCount(frame)) << where;
+      EXPECT_EQ(audit.diagnosed, audit.covered) << where << ": every covered pixel's diagnostics checked";
       EXPECT_EQ(audit.offGrid, 0u) << where;
       EXPECT_GT(audit.covered, 0u) << where;
     }
@@ -152,6 +154,75 @@ TEST(CoverageAudit, FindsPixelsChangedByHand) {
       EXPECT_EQ(p.owner, 0u) << "the nearer owner";
     }
   }
+}
+
+// The gate explains a disagreement by the edge.dist and depth.tie the rasterizer writes; the
+// audit holds both to the set-up that owns the pixel. Shorter edge distances and wider depth
+// ties than the geometry gives are found; the other way round (a stricter gate) is not a
+// violation.
+TEST(CoverageAudit, FindsDiagnosticsMoreLenientThanTheGeometry) {
+  for (const char* spec : {"blob:tris=2000", "nearplane"}) {  // whole triangles; clipped ones
+    const Scene scene = makeBuiltinScene(spec);
+    const RasterOptions options;
+    const Framebuffer correct = rasterize(scene, options);
+    ASSERT_EQ(auditCoverage(scene, options, correct).violations(), 0u) << spec;
+    const auto& ids = correct.find(channels::kTriangleId)->uints;
+    const auto& edge = correct.find(channels::kEdgeDistance)->floats;
+    const auto& tie = correct.find(channels::kDepthTie)->floats;
+    // A pixel well inside its triangle, the first in row order.
+    std::size_t at = 0;
+    while (at < ids.size() && (ids[at] == channels::kNoTriangle || !(edge[at] > 0.4f))) ++at;
+    ASSERT_LT(at, ids.size()) << spec;
+    const int x = int(at % std::size_t(correct.width())), y = int(at / std::size_t(correct.width()));
+
+    // One diagnostic at that pixel scaled by `factor`: found once, at the pixel, with the value
+    // the frame had (to the rounding of the audit's double evaluation).
+    struct Case {
+      const char* channel;
+      float factor;
+      std::size_t CoverageAudit::*count;
+      CoverageAudit::Diagnostic CoverageAudit::*first;
+      double tolerance;  // of the audited value, relative to the frame's
+    };
+    for (const Case& c : {Case{channels::kEdgeDistance, 0.5f, &CoverageAudit::edgeDistanceShort,
+                               &CoverageAudit::firstEdgeDistanceShort, 1e-5},
+                          Case{channels::kEdgeDistance, 0.99f, &CoverageAudit::edgeDistanceShort,
+                               &CoverageAudit::firstEdgeDistanceShort, 1e-5},
+                          Case{channels::kDepthTie, 1.01f, &CoverageAudit::depthTieWide, &CoverageAudit::firstDepthTieWide, 1e-6},
+                          Case{channels::kDepthTie, 1.0001f, &CoverageAudit::depthTieWide,
+                               &CoverageAudit::firstDepthTieWide, 1e-6}}) {
+      Framebuffer changed = correct;
+      float& value = changed.find(c.channel)->floats[at];
+      const double was = value;
+      value *= c.factor;
+      const CoverageAudit audit = auditCoverage(scene, options, changed);
+      EXPECT_EQ(audit.*c.count, 1u) << spec << ", " << c.channel << " x " << c.factor;
+      EXPECT_EQ(audit.violations(), 1u) << spec;
+      const CoverageAudit::Diagnostic& first = audit.*c.first;
+      EXPECT_EQ(first.x, x);
+      EXPECT_EQ(first.y, y);
+      EXPECT_EQ(first.triangle, ids[at]);
+      EXPECT_EQ(first.written, double(value));
+      EXPECT_NEAR(first.audited, was, c.tolerance * was) << spec << ", " << c.channel;
+    }
+    // Stricter diagnostics: a longer edge distance, a narrower tie.
+    Framebuffer stricter = correct;
+    stricter.find(channels::kEdgeDistance)->floats[at] = edge[at] * 2.0f;
+    stricter.find(channels::kDepthTie)->floats[at] = tie[at] * 0.5f;
+    EXPECT_EQ(auditCoverage(scene, options, stricter).violations(), 0u) << spec;
+  }
+}
+
+TEST(CoverageAudit, LeavesAFrameWithoutDiagnosticsUndiagnosed) {
+  const Scene scene = makeBuiltinScene("edges");
+  RasterOptions options;
+  options.diagnostics = false;
+  const Framebuffer frame = rasterize(scene, options);
+  ASSERT_EQ(frame.find(channels::kEdgeDistance), nullptr);
+  const CoverageAudit audit = auditCoverage(scene, options, frame);
+  EXPECT_EQ(audit.diagnosed, 0u);
+  EXPECT_EQ(audit.violations(), 0u);
+  EXPECT_GT(audit.covered, 0u);
 }
 
 }  // namespace
