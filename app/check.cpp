@@ -83,6 +83,11 @@ std::vector<std::string> auditReasons(const CoverageAudit& audit) {
                       "which would explain away disagreements (" +
                       diagnostic(audit.firstEdgeDistanceShort, " px") + " from the edges)");
   }
+  if (audit.edgeBandWide()) {
+    reasons.push_back("coverage audit: the header's edge band of " + formatNumber(audit.edgeBand) +
+                      " px is wider than snapping and the transform allow (at most " +
+                      formatNumber(audit.edgeBandLimit) + " px), which would explain away disagreements");
+  }
   if (audit.depthTieWide > 0) {
     reasons.push_back("coverage audit: " + std::to_string(audit.depthTieWide) +
                       " pixel(s) whose depth.tie exceeds its depth key's error bound, which would explain away "

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -244,6 +245,33 @@ int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::
   return count;
 }
 
+double edgeBandCeiling(const Scene& scene, const RasterOptions& options) {
+  const int bits = options.subpixelBits;
+  const double side = std::max(scene.camera.width(), scene.camera.height());
+  const double snapping = bits == 0 ? 0.0 : 0.7072 * std::ldexp(1.0, -bits);
+  // The guard band (clip.h): |x|, |y| <= guard w, 2^(28 - bits) pixels from the centre (2^20
+  // without snapping).
+  const double guard = 2.0 * std::ldexp(1.0, 28 - (bits == 0 ? 8 : bits)) / side;
+  // Each clip coordinate is a 4-term dot product in double: error <= 4 u (max|p| sum_{j<3}
+  // |M_rj| + |M_r3|); in pixels, at w and |ndc| <= guard, (side / 2) error (1 + guard) / w, plus
+  // the viewport mapping's 2^-50 |raster|. No vertex drawn is nearer than the near plane.
+  double largest = 1.0;
+  for (const glm::vec3& p : scene.mesh.positions) {
+    largest = std::max({largest, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
+  }
+  const glm::dmat4 m = scene.camera.clipFromWorld();
+  double bound = 0.0;
+  for (int r = 0; r < 4; ++r) {
+    double linear = 0.0;
+    for (int c = 0; c < 3; ++c) linear += std::fabs(m[c][r]);
+    bound = std::max(bound, linear * largest + std::fabs(m[3][r]));
+  }
+  const double clipError = 4.0 * 0x1p-53 * bound;
+  const double shift =
+      0.5 * side * clipError * (1.0 + guard) / scene.camera.zNear() + 0x1p-50 * (0.5 * (guard + 1.0) * side + 1.0);
+  return (snapping + 2.0 * shift) * (1.0 + 0x1p-40);  // the slack: a clipped vertex's w may round below near
+}
+
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame) {
   const auto start = std::chrono::steady_clock::now();
   const Channel* ids = frame.find(channels::kTriangleId);
@@ -284,6 +312,14 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
     } else if (hasOther) {
       note(audit.lost, audit.firstLost);
     }
+  }
+  if (const auto band = frame.attributes.find(channels::header::kEdgeBand); band != frame.attributes.end()) {
+    const char* text = band->second.c_str();
+    char* end = nullptr;
+    audit.edgeBand = std::strtod(text, &end);
+    audit.edgeBandLimit = edgeBandCeiling(scene, options);
+    // Unreadable or negative: no band to trust, which fails.
+    if (end == text || *end != '\0' || !(audit.edgeBand >= 0.0)) audit.edgeBand = std::numeric_limits<double>::infinity();
   }
   audit.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return audit;

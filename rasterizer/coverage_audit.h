@@ -15,7 +15,9 @@
 // edge.dist must not fall short of its centre's distance from the edges of the set-up that owns
 // it, and its depth.tie must not exceed that set-up's depth-key error bound. Both are the
 // rasterizer's own word, and a diagnostic too lenient would change no pixel and explain away
-// whatever the comparison should fail.
+// whatever the comparison should fail. So would a wider edge band in the frame's header (the
+// distance from an edge within which a disagreement is explained): it must not exceed what
+// snapping and the double transform allow, worked out again from the scene and the camera.
 #pragma once
 
 #include <cstddef>
@@ -56,15 +58,26 @@ struct CoverageAudit {
     std::uint32_t triangle = 0;
     double written = 0.0, audited = 0.0;
   } firstEdgeDistanceShort, firstDepthTieWide;
+  // The header's edge band (0: none written) and the widest it may be (edgeBandCeiling).
+  double edgeBand = 0.0, edgeBandLimit = 0.0;
+  bool edgeBandWide() const { return edgeBand > edgeBandLimit; }
   double ms = 0.0;  // the audit's wall-clock time
 
-  std::size_t violations() const { return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide; }
+  std::size_t violations() const {
+    return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide + (edgeBandWide() ? 1 : 0);
+  }
 };
 
 // How many of a set-up's three corners, snapped to (x[i], y[i]) with `bits` fraction bits, are
 // not the grid point nearest their raster position: farther than half a grid step from it in x
 // or in y (round to nearest; a tie may go either way).
 int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::dvec2 (&raster)[3], int bits);
+
+// The widest edge band a frame of `scene` rendered with `options` may claim (docs/numerics.md,
+// "Disagreements"): snapping's sqrt(2)/2 grid steps, plus twice the farthest the double transform
+// may move any vertex drawn, bounded for every position at or beyond the near plane inside the
+// guard band, from the scene's largest coordinate and the camera alone.
+double edgeBandCeiling(const Scene& scene, const RasterOptions& options);
 
 // Audits `frame`, a frame Rasterizer::render made of `scene` with `options` (its tri.id channel).
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame);

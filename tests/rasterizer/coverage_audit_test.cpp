@@ -3,6 +3,7 @@
 // lenient than the frame's geometry allows.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,8 @@ TEST(CoverageAudit, FindsNothingInTheRasterizersOwnFrames) {
                                         << audit.firstLost.y;
       EXPECT_EQ(audit.covered, coveredCount(frame)) << where;
       EXPECT_EQ(audit.diagnosed, audit.covered) << where << ": every covered pixel's diagnostics checked";
+      EXPECT_GT(audit.edgeBand, 0.0) << where;
+      EXPECT_LE(audit.edgeBand, audit.edgeBandLimit) << where;
       EXPECT_EQ(audit.offGrid, 0u) << where;
       EXPECT_GT(audit.covered, 0u) << where;
     }
@@ -210,6 +213,37 @@ TEST(CoverageAudit, FindsDiagnosticsMoreLenientThanTheGeometry) {
     stricter.find(channels::kEdgeDistance)->floats[at] = edge[at] * 2.0f;
     stricter.find(channels::kDepthTie)->floats[at] = tie[at] * 0.5f;
     EXPECT_EQ(auditCoverage(scene, options, stricter).violations(), 0u) << spec;
+  }
+}
+
+// The header's edge band against the ceiling worked out from the scene and the camera: at
+// snapping's own sqrt(2)/2 grid steps where the transform's error is negligible, so that a band
+// from one bit fewer (twice as wide) or an unreadable one fails.
+TEST(CoverageAudit, HoldsTheHeadersEdgeBandToSnappingAndTheTransform) {
+  for (const char* spec : {"blob:tris=2000", "nearplane", "huge"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    for (int bits : {8, 4, 0}) {
+      RasterOptions options;
+      options.subpixelBits = bits;
+      const Framebuffer correct = rasterize(scene, options);
+      const double band = std::stod(correct.attributes.at(channels::header::kEdgeBand));
+      EXPECT_EQ(auditCoverage(scene, options, correct).edgeBand, band) << spec;
+      char twice[32];
+      std::snprintf(twice, sizeof twice, "%.17g", 2.0 * edgeBandCeiling(scene, options));
+      for (const char* text : {static_cast<const char*>(twice), "nan", "wide", "-0.5", "0.002 px"}) {
+        Framebuffer changed = correct;
+        changed.attributes[channels::header::kEdgeBand] = text;
+        const CoverageAudit audit = auditCoverage(scene, options, changed);
+        EXPECT_TRUE(audit.edgeBandWide()) << spec << " at " << bits << " bits, band " << text;
+        EXPECT_EQ(audit.violations(), 1u) << spec;
+      }
+    }
+    // Where the transform's error is negligible, the ceiling is snapping's steps.
+    if (std::string(spec) == "blob:tris=2000") {
+      const double ceiling = edgeBandCeiling(scene, RasterOptions{});
+      EXPECT_NEAR(ceiling, 0.7072 / 256, 1e-6);
+      EXPECT_GT(0.7072 / 128, 1.9 * ceiling) << "a band from one bit fewer fails";
+    }
   }
 }
 
