@@ -88,6 +88,10 @@ std::vector<std::string> auditReasons(const CoverageAudit& audit) {
                       " px is wider than snapping and the transform allow (at most " +
                       formatNumber(audit.edgeBandLimit) + " px), which would explain away disagreements");
   }
+  if (audit.cameraMismatch) {
+    reasons.push_back("coverage audit: the header's camera line (rastercheck.camera) is not the scene's, and the "
+                      "comparison takes its near and far planes");
+  }
   if (audit.depthTieWide > 0) {
     reasons.push_back("coverage audit: " + std::to_string(audit.depthTieWide) +
                       " pixel(s) whose depth.tie exceeds its depth key's error bound, which would explain away "

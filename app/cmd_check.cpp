@@ -133,6 +133,7 @@ nlohmann::json auditToJson(const CoverageAudit& a) {
           {"first_depth_tie_wide", auditDiagnostic(a.depthTieWide, a.firstDepthTieWide)},
           {"edge_band", a.edgeBand},
           {"edge_band_limit", a.edgeBandLimit},
+          {"camera_mismatch", a.cameraMismatch},
           {"ms", a.ms}};
 }
 

@@ -321,6 +321,8 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
     // Unreadable or negative: no band to trust, which fails.
     if (end == text || *end != '\0' || !(audit.edgeBand >= 0.0)) audit.edgeBand = std::numeric_limits<double>::infinity();
   }
+  const auto camera = frame.attributes.find(channels::header::kCamera);
+  audit.cameraMismatch = camera == frame.attributes.end() || camera->second != scene.camera.describe();
   audit.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return audit;
 }

@@ -17,7 +17,9 @@
 // rasterizer's own word, and a diagnostic too lenient would change no pixel and explain away
 // whatever the comparison should fail. So would a wider edge band in the frame's header (the
 // distance from an edge within which a disagreement is explained): it must not exceed what
-// snapping and the double transform allow, worked out again from the scene and the camera.
+// snapping and the double transform allow, worked out again from the scene and the camera. And
+// so would a camera line in the header other than the scene's: the comparison takes its near and
+// far planes for clipping ties.
 #pragma once
 
 #include <cstddef>
@@ -61,10 +63,13 @@ struct CoverageAudit {
   // The header's edge band (0: none written) and the widest it may be (edgeBandCeiling).
   double edgeBand = 0.0, edgeBandLimit = 0.0;
   bool edgeBandWide() const { return edgeBand > edgeBandLimit; }
+  // The header's camera line (channels::header::kCamera) differs from the scene camera's.
+  bool cameraMismatch = false;
   double ms = 0.0;  // the audit's wall-clock time
 
   std::size_t violations() const {
-    return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide + (edgeBandWide() ? 1 : 0);
+    return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide + (edgeBandWide() ? 1 : 0) +
+           (cameraMismatch ? 1 : 0);
   }
 };
 

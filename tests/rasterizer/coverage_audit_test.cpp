@@ -247,6 +247,24 @@ TEST(CoverageAudit, HoldsTheHeadersEdgeBandToSnappingAndTheTransform) {
   }
 }
 
+// compare explains a pixel one path drew at the near or far plane by the planes in either
+// image's camera line; the frame's must be the scene's.
+TEST(CoverageAudit, HoldsTheHeadersCameraLineToTheScene) {
+  const Scene scene = makeBuiltinScene("nearplane");
+  const RasterOptions options;
+  Framebuffer frame = rasterize(scene, options);
+  EXPECT_FALSE(auditCoverage(scene, options, frame).cameraMismatch);
+  const std::string line = frame.attributes.at(channels::header::kCamera);
+  const std::size_t near = line.find(" near=");
+  ASSERT_NE(near, std::string::npos) << line;
+  frame.attributes[channels::header::kCamera] = line.substr(0, near) + " near=0.5" + line.substr(line.find(' ', near + 1));
+  CoverageAudit audit = auditCoverage(scene, options, frame);
+  EXPECT_TRUE(audit.cameraMismatch) << frame.attributes.at(channels::header::kCamera);
+  EXPECT_EQ(audit.violations(), 1u);
+  frame.attributes.erase(channels::header::kCamera);
+  EXPECT_TRUE(auditCoverage(scene, options, frame).cameraMismatch) << "no camera line";
+}
+
 TEST(CoverageAudit, LeavesAFrameWithoutDiagnosticsUndiagnosed) {
   const Scene scene = makeBuiltinScene("edges");
   RasterOptions options;
