@@ -42,6 +42,7 @@ std::string auditLine(const CoverageAudit& a) {
                               : std::to_string(a.violations()) + " violation(s)") +
          (a.diagnosed == 0 ? std::string("; no diagnostics")
                            : "; edge.dist and depth.tie checked at " + std::to_string(a.diagnosed) + " pixels") +
+         "; edge band " + formatNumber(a.edgeBand) + " px, at most " + formatNumber(a.edgeBandLimit) +
          " (" + formatNumber(a.ms) + " ms)";
 }
 

@@ -158,7 +158,10 @@ TEST(Gate, NamesEachDiagnosticTheAuditFindsTooLenient) {
   EXPECT_EQ(reasons[1],
             "coverage audit: 1 pixel(s) whose depth.tie exceeds its depth key's error bound, which would explain "
             "away disagreements (first found at (6, 8), triangle 43: 4e-05 written, 4e-06 the bound)");
-  EXPECT_NE(app::auditLine(audit).find("4 violation(s); edge.dist and depth.tie checked at 100 pixels"),
+  audit.edgeBand = 0.0027625;
+  audit.edgeBandLimit = 0.0027633;
+  EXPECT_NE(app::auditLine(audit).find("4 violation(s); edge.dist and depth.tie checked at 100 pixels; edge band "
+                                       "0.00276 px, at most 0.00276 ("),
             std::string::npos)
       << app::auditLine(audit);
 }
