@@ -84,6 +84,12 @@ std::vector<std::string> auditReasons(const CoverageAudit& audit) {
                       "which would explain away disagreements (" +
                       diagnostic(audit.firstEdgeDistanceShort, " px") + " from the edges)");
   }
+  if (audit.boundWide > 0) {
+    reasons.push_back("coverage audit: " + std::to_string(audit.boundWide) +
+                      " pixel(s) whose bound.bary or bound.depth exceeds its triangle's error bound, which would pass "
+                      "larger errors (" +
+                      diagnostic(audit.firstBoundWide, "") + " the bound)");
+  }
   if (audit.edgeBandWide()) {
     reasons.push_back("coverage audit: the header's edge band of " + formatNumber(audit.edgeBand) +
                       " px is wider than snapping and the transform allow (at most " +

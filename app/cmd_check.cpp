@@ -131,6 +131,8 @@ nlohmann::json auditToJson(const CoverageAudit& a) {
           {"first_edge_distance_short", auditDiagnostic(a.edgeDistanceShort, a.firstEdgeDistanceShort)},
           {"depth_tie_wide", a.depthTieWide},
           {"first_depth_tie_wide", auditDiagnostic(a.depthTieWide, a.firstDepthTieWide)},
+          {"bound_wide", a.boundWide},
+          {"first_bound_wide", auditDiagnostic(a.boundWide, a.firstBoundWide)},
           {"edge_band", a.edgeBand},
           {"edge_band_limit", a.edgeBandLimit},
           {"camera_mismatch", a.cameraMismatch},

@@ -102,6 +102,8 @@ struct Diagnostics {
   const float* edgeDistance = nullptr;
   const float* depthTie = nullptr;
   const float* depth = nullptr;
+  const float* baryBound = nullptr;
+  const float* depthBound = nullptr;
 };
 
 // A set-up's unsnapped edges, for the edge distances: the distance of p from edge i, signed
@@ -146,8 +148,16 @@ struct UnsnappedEdges {
 // evaluation's own error. A diagonal inside a clipped polygon counts only for a centre beyond
 // it (tile_resolve.h's diagnosticsOf), here as soon as the centre may be beyond it.
 template <typename Real>
-void auditDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, int px, int py, std::size_t p,
-                      double keyTerms, const Diagnostics& diag, CoverageAudit& audit) {
+void auditDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, const ShadeSetup<Real>& shade, int px,
+                      int py, std::size_t p, double keyTerms, const Diagnostics& diag, CoverageAudit& audit) {
+  // The error bounds: at most the set-up's own, which setupShade gives every pixel it wins.
+  if (!(diag.baryBound[p] <= shade.baryBound && diag.depthBound[p] <= shade.depthBound)) {
+    const bool bary = !(diag.baryBound[p] <= shade.baryBound);
+    if (audit.boundWide++ == 0) {
+      audit.firstBoundWide = {px, py, s.coverage.source.triangle, bary ? diag.baryBound[p] : diag.depthBound[p],
+                              bary ? shade.baryBound : shade.depthBound};
+    }
+  }
   const double u = s.context.unitRoundoff, R = edges.R, ownError = edges.ownError;
   const double cx = px + 0.5, cy = py + 0.5;
   double nearest = std::numeric_limits<double>::infinity();
@@ -184,6 +194,8 @@ void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint3
   if (t.orientation == 0) return;
   const CoverageSetup<Real>& c = s.coverage;
   const UnsnappedEdges edges(s);
+  ShadeSetup<Real> shade{};
+  bool shaded = false;  // setupShade runs for a set-up that owns a pixel, once
   // The depth key the tile kernels compute in Real, here in double, and the bound on their
   // error (setup.h: 5 u (|key0| + |keyX dx| + |keyY dy|)).
   const double u = s.context.unitRoundoff;
@@ -205,7 +217,13 @@ void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint3
       if (c.source.triangle == written[p]) {
         state.flags[p] |= PixelState::kOwned | (onEdge ? PixelState::kOnEdge : 0);
         state.writtenHigh[p] = std::max(state.writtenHigh[p], key + bound);
-        if (diag.edgeDistance) auditDiagnostics(s, edges, px, py, p, terms, diag, audit);
+        if (diag.edgeDistance) {
+          if (!shaded) {
+            setupShade(s.clip, s.raster, s.innerEdges, c.source.clipped >= 0, s.context, c, shade);
+            shaded = true;
+          }
+          auditDiagnostics(s, edges, shade, px, py, p, terms, diag, audit);
+        }
       } else if (key - bound > state.otherLow[p]) {
         state.otherLow[p] = key - bound;
         state.otherOwner[p] = c.source.triangle;
@@ -286,8 +304,11 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
   const Channel* edgeDistance = frame.find(channels::kEdgeDistance);
   const Channel* depthTie = frame.find(channels::kDepthTie);
   const Channel* depth = frame.find(channels::kDepth);
-  if (edgeDistance && depthTie && depth) {
-    diag = {edgeDistance->floats.data(), depthTie->floats.data(), depth->floats.data()};
+  const Channel* baryBound = frame.find(channels::kBaryBound);
+  const Channel* depthBound = frame.find(channels::kDepthBound);
+  if (edgeDistance && depthTie && depth && baryBound && depthBound) {
+    diag = {edgeDistance->floats.data(), depthTie->floats.data(), depth->floats.data(), baryBound->floats.data(),
+            depthBound->floats.data()};
   }
   if (options.precision == Precision::kFloat) {
     auditSetups<float>(scene, options, written, diag, state, audit);

@@ -15,7 +15,9 @@
 // edge.dist must not fall short of its centre's distance from the edges of the set-up that owns
 // it, and its depth.tie must not exceed that set-up's depth-key error bound. Both are the
 // rasterizer's own word, and a diagnostic too lenient would change no pixel and explain away
-// whatever the comparison should fail. So would a wider edge band in the frame's header (the
+// whatever the comparison should fail. So would a wider error bound (bound.bary, bound.depth)
+// than the set-up's own (setupShade, the formula of docs/numerics.md: the oracle test holds that
+// formula to the exact errors both ways). So would a wider edge band in the frame's header (the
 // distance from an edge within which a disagreement is explained): it must not exceed what
 // snapping and the double transform allow, worked out again from the scene and the camera. And
 // so would a camera line in the header other than the scene's: the comparison takes its near and
@@ -55,11 +57,13 @@ struct CoverageAudit {
   // rasterizer's own evaluation. The first found of each, with the value written and the
   // audit's.
   std::size_t diagnosed = 0, edgeDistanceShort = 0, depthTieWide = 0;
+  // Covered pixels whose bound.bary or bound.depth is wider than the owning set-up's bound.
+  std::size_t boundWide = 0;
   struct Diagnostic {
     int x = -1, y = -1;
     std::uint32_t triangle = 0;
     double written = 0.0, audited = 0.0;
-  } firstEdgeDistanceShort, firstDepthTieWide;
+  } firstEdgeDistanceShort, firstDepthTieWide, firstBoundWide;
   // The header's edge band (0: none written) and the widest it may be (edgeBandCeiling).
   double edgeBand = 0.0, edgeBandLimit = 0.0;
   bool edgeBandWide() const { return edgeBand > edgeBandLimit; }
@@ -68,7 +72,7 @@ struct CoverageAudit {
   double ms = 0.0;  // the audit's wall-clock time
 
   std::size_t violations() const {
-    return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide + (edgeBandWide() ? 1 : 0) +
+    return notOwned + lost + offGrid + edgeDistanceShort + depthTieWide + boundWide + (edgeBandWide() ? 1 : 0) +
            (cameraMismatch ? 1 : 0);
   }
 };

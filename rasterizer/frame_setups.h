@@ -16,6 +16,7 @@ template <typename Real>
 struct VisitedSetup {
   const CoverageSetup<Real>& coverage;
   glm::dvec2 raster[3];    // unsnapped: the vertices', or a clipped sub-triangle's own
+  glm::dvec4 clip[3];      // the same vertices' clip positions
   unsigned innerEdges;     // bit i: edge i (opposite vertex i) is a diagonal inside a clipped polygon
   const SetupContext& context;
 };

@@ -746,9 +746,15 @@ void forEachSetup(const Scene& scene, const RasterOptions& options, const SetupV
   for (const SetupBlock<Real>& block : frame.blocks) {
     for (std::size_t i = 0; i < block.coverage.size(); ++i) {
       const CoverageSetup<Real>& c = block.coverage[i];
-      VisitedSetup<Real> v{c, {}, c.source.clipped < 0 ? 0u : block.clipped[std::size_t(c.source.clipped)].innerEdges,
-                           p.context};
-      kernel::rasterOfSetup(c, scene.mesh.triangles.data(), frame.raster.data(), block.clipped.data(), v.raster);
+      VisitedSetup<Real> v{c, {}, {}, 0u, p.context};
+      if (c.source.clipped < 0) {
+        const glm::uvec3 tri = scene.mesh.triangles[c.source.triangle];
+        for (int k = 0; k < 3; ++k) v.raster[k] = frame.raster[tri[k]], v.clip[k] = frame.clip[tri[k]];
+      } else {
+        const ClippedTriangle<Real>& t = block.clipped[std::size_t(c.source.clipped)];
+        for (int k = 0; k < 3; ++k) v.raster[k] = t.raster[k], v.clip[k] = t.clip[k];
+        v.innerEdges = t.innerEdges;
+      }
       visit(v);
     }
   }

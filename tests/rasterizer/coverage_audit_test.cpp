@@ -159,10 +159,10 @@ TEST(CoverageAudit, FindsPixelsChangedByHand) {
   }
 }
 
-// The gate explains a disagreement by the edge.dist and depth.tie the rasterizer writes; the
-// audit holds both to the set-up that owns the pixel. Shorter edge distances and wider depth
-// ties than the geometry gives are found; the other way round (a stricter gate) is not a
-// violation.
+// The gate explains a disagreement by the edge.dist and depth.tie the rasterizer writes, and
+// passes any error within its bound.bary and bound.depth; the audit holds all four to the
+// set-up that owns the pixel. Shorter edge distances, wider depth ties and wider bounds than
+// the set-up gives are found; the other way round (a stricter gate) is not a violation.
 TEST(CoverageAudit, FindsDiagnosticsMoreLenientThanTheGeometry) {
   for (const char* spec : {"blob:tris=2000", "nearplane"}) {  // whole triangles; clipped ones
     const Scene scene = makeBuiltinScene(spec);
@@ -193,7 +193,10 @@ TEST(CoverageAudit, FindsDiagnosticsMoreLenientThanTheGeometry) {
                                &CoverageAudit::firstEdgeDistanceShort, 1e-5},
                           Case{channels::kDepthTie, 1.01f, &CoverageAudit::depthTieWide, &CoverageAudit::firstDepthTieWide, 1e-6},
                           Case{channels::kDepthTie, 1.0001f, &CoverageAudit::depthTieWide,
-                               &CoverageAudit::firstDepthTieWide, 1e-6}}) {
+                               &CoverageAudit::firstDepthTieWide, 1e-6},
+                          Case{channels::kBaryBound, 1.001f, &CoverageAudit::boundWide, &CoverageAudit::firstBoundWide, 0.0},
+                          Case{channels::kDepthBound, 1.001f, &CoverageAudit::boundWide, &CoverageAudit::firstBoundWide,
+                               0.0}}) {
       Framebuffer changed = correct;
       float& value = changed.find(c.channel)->floats[at];
       const double was = value;
@@ -208,10 +211,12 @@ TEST(CoverageAudit, FindsDiagnosticsMoreLenientThanTheGeometry) {
       EXPECT_EQ(first.written, double(value));
       EXPECT_NEAR(first.audited, was, c.tolerance * was) << spec << ", " << c.channel;
     }
-    // Stricter diagnostics: a longer edge distance, a narrower tie.
+    // Stricter diagnostics: a longer edge distance, a narrower tie, tighter bounds.
     Framebuffer stricter = correct;
     stricter.find(channels::kEdgeDistance)->floats[at] = edge[at] * 2.0f;
     stricter.find(channels::kDepthTie)->floats[at] = tie[at] * 0.5f;
+    stricter.find(channels::kBaryBound)->floats[at] *= 0.5f;
+    stricter.find(channels::kDepthBound)->floats[at] *= 0.5f;
     EXPECT_EQ(auditCoverage(scene, options, stricter).violations(), 0u) << spec;
   }
 }
