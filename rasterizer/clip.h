@@ -5,6 +5,7 @@
 // (|x|, |y| <= k w) that keeps snapped coordinates inside the exact range of int64 edge math.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
 
@@ -12,6 +13,24 @@ namespace rc {
 
 inline constexpr int kMaxClipVertices = 9;  // 3 + one per plane (6 planes)
 inline constexpr int kClipPlaneCount = 6;
+
+// The guard band's half-width in pixels from the viewport centre: 2^(28 - bits), so that snapped
+// positions stay below 2^29 grid steps (coverage.h); without snapping (bits 0), 2^20, as with 8
+// bits: raster positions stay below 2^21.
+inline double guardBandPixels(int subpixelBits) { return std::ldexp(1.0, 28 - (subpixelBits == 0 ? 8 : subpixelBits)); }
+
+// A bound on the absolute error of each clip coordinate that the double transform
+// clipFromWorld * (p, 1) computes, for world coordinates at most `largest` in magnitude: each is a
+// 4-term dot product, error <= 4 u sum_j |M_rj| |p_j| <= 4 u (largest sum_{j<3} |M_rj| + |M_r3|).
+inline double clipErrorBound(const glm::dmat4& clipFromWorld, double largest) {
+  double bound = 0.0;
+  for (int r = 0; r < 4; ++r) {
+    double linear = 0.0;
+    for (int c = 0; c < 3; ++c) linear += std::fabs(clipFromWorld[c][r]);
+    bound = std::max(bound, linear * largest + std::fabs(clipFromWorld[3][r]));
+  }
+  return 4.0 * 0x1p-53 * bound;
+}
 
 template <typename Real>
 struct ClipVertex {

@@ -6,12 +6,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <type_traits>
+#include <optional>
 #include <vector>
 
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/plane_allocator.h"
+#include "rasterizer/clip.h"
 #include "rasterizer/frame_setups.h"
 #include "rasterizer/orientation.h"
 
@@ -193,9 +194,9 @@ void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint3
                 const Diagnostics& diag, PixelState& state, CoverageAudit& audit) {
   if (t.orientation == 0) return;
   const CoverageSetup<Real>& c = s.coverage;
-  const UnsnappedEdges edges(s);
+  // What the diagnostics are held to, made once for a set-up that owns a pixel.
+  std::optional<UnsnappedEdges> edges;
   ShadeSetup<Real> shade{};
-  bool shaded = false;  // setupShade runs for a set-up that owns a pixel, once
   // The depth key the tile kernels compute in Real, here in double, and the bound on their
   // error (setup.h: 5 u (|key0| + |keyX dx| + |keyY dy|)).
   const double u = s.context.unitRoundoff;
@@ -218,11 +219,11 @@ void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint3
         state.flags[p] |= PixelState::kOwned | (onEdge ? PixelState::kOnEdge : 0);
         state.writtenHigh[p] = std::max(state.writtenHigh[p], key + bound);
         if (diag.edgeDistance) {
-          if (!shaded) {
+          if (!edges) {
+            edges.emplace(s);
             setupShade(s.clip, s.raster, s.innerEdges, c.source.clipped >= 0, s.context, c, shade);
-            shaded = true;
           }
-          auditDiagnostics(s, edges, shade, px, py, p, terms, diag, audit);
+          auditDiagnostics(s, *edges, shade, px, py, p, terms, diag, audit);
         }
       } else if (key - bound > state.otherLow[p]) {
         state.otherLow[p] = key - bound;
@@ -267,24 +268,16 @@ double edgeBandCeiling(const Scene& scene, const RasterOptions& options) {
   const int bits = options.subpixelBits;
   const double side = std::max(scene.camera.width(), scene.camera.height());
   const double snapping = bits == 0 ? 0.0 : 0.7072 * std::ldexp(1.0, -bits);
-  // The guard band (clip.h): |x|, |y| <= guard w, 2^(28 - bits) pixels from the centre (2^20
-  // without snapping).
-  const double guard = 2.0 * std::ldexp(1.0, 28 - (bits == 0 ? 8 : bits)) / side;
-  // Each clip coordinate is a 4-term dot product in double: error <= 4 u (max|p| sum_{j<3}
-  // |M_rj| + |M_r3|); in pixels, at w and |ndc| <= guard, (side / 2) error (1 + guard) / w, plus
-  // the viewport mapping's 2^-50 |raster|. No vertex drawn is nearer than the near plane.
+  // The guard band (clip.h): |x|, |y| <= guard w. In pixels, a clip coordinate's error at w
+  // and |ndc| <= guard is (side / 2) error (1 + guard) / w, plus the viewport mapping's 2^-50
+  // |raster|; no vertex drawn is nearer than the near plane. The largest world coordinate is
+  // taken here from the scene, not from the frame's transform.
+  const double guard = 2.0 * guardBandPixels(bits) / side;
   double largest = 1.0;
   for (const glm::vec3& p : scene.mesh.positions) {
     largest = std::max({largest, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
   }
-  const glm::dmat4 m = scene.camera.clipFromWorld();
-  double bound = 0.0;
-  for (int r = 0; r < 4; ++r) {
-    double linear = 0.0;
-    for (int c = 0; c < 3; ++c) linear += std::fabs(m[c][r]);
-    bound = std::max(bound, linear * largest + std::fabs(m[3][r]));
-  }
-  const double clipError = 4.0 * 0x1p-53 * bound;
+  const double clipError = clipErrorBound(scene.camera.clipFromWorld(), largest);
   const double shift =
       0.5 * side * clipError * (1.0 + guard) / scene.camera.zNear() + 0x1p-50 * (0.5 * (guard + 1.0) * side + 1.0);
   return (snapping + 2.0 * shift) * (1.0 + 0x1p-40);  // the slack: a clipped vertex's w may round below near

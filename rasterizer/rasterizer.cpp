@@ -290,7 +290,7 @@ struct Pipeline {
     // Guard band: 2^(28 - bits) pixels from the viewport centre, so that snapped positions
     // stay below 2^29 grid steps (coverage.h); the viewport must fit inside it. Without
     // snapping, 2^20 pixels, as with 8 bits: raster positions stay below 2^21.
-    const double guardPixels = std::ldexp(1.0, 28 - (o.subpixelBits == 0 ? 8 : o.subpixelBits));
+    const double guardPixels = guardBandPixels(o.subpixelBits);
     if (std::max(width, height) > guardPixels) {
       throw usageError("--subpixel-bits " + std::to_string(o.subpixelBits) +
                        " is too fine for a " + std::to_string(width) + "x" +
@@ -360,15 +360,7 @@ struct Pipeline {
       all.nearestW = std::min(all.nearestW, f.nearestW);
       all.outcodes |= f.outcodes;
     }
-    // Each clip coordinate is a 4-term dot product in double (p_3 = 1):
-    // error <= 4 u sum_j |M_rj| |p_j| <= 4 u (max|p| sum_{j<3} |M_rj| + |M_r3|).
-    double bound = 0.0;
-    for (int r = 0; r < 4; ++r) {
-      double linear = 0.0;
-      for (int c = 0; c < 3; ++c) linear += std::fabs(clipFromWorld[c][r]);
-      bound = std::max(bound, linear * all.largest + std::fabs(clipFromWorld[3][r]));
-    }
-    context.clipError = 4.0 * 0x1p-53 * bound;
+    context.clipError = clipErrorBound(clipFromWorld, all.largest);
     // Back faces (docs/rasterizer.md): when every vertex lies beyond the near plane, so does
     // the whole solid, and every view ray starts outside it. clipError covers the rounding of
     // the computed w.
