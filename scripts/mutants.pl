@@ -1,16 +1,18 @@
 #!/usr/bin/perl
 # The gate's teeth against wrong rasterizers: for each mutant in tests/mutants.txt (a realistic
 # bug, as a literal edit of the rasterizer's source), apply it, rebuild rastercheck, and require
-# `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. Every
-# file is restored afterwards, whatever happens, and rastercheck rebuilt from the clean source.
+# `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. A
+# mutant of the gate itself (compare made more lenient, which a right rasterizer still passes)
+# names a test binary and filter instead (`test TARGET FILTER`), which must fail. Every file is
+# restored afterwards, whatever happens, and everything rebuilt from the clean source.
 #
 #   scripts/mutants.pl [--build DIR] [--list FILE] [NAME...]
 #     DIR: $RASTERCHECK_BUILD_DIR or build; FILE: tests/mutants.txt; NAME: only these mutants
 #
 # The unmutated build must pass first, or a failure would prove nothing. An edit that no longer
 # matches the source exactly once, or a mutant that does not compile, stops the run: the list
-# must follow the code. Exit 0 when every mutant failed the gate, 1 when one passed (it is
-# named), 2 when the run itself could not be done. Perl from perl-base: no modules beyond it.
+# must follow the code. Exit 0 when every mutant failed, 1 when one passed the gate or its tests
+# (it is named), 2 when the run itself could not be done. Perl from perl-base: no modules beyond it.
 use strict;
 use warnings;
 
@@ -29,15 +31,16 @@ while (@ARGV) {
 my $jobs = `nproc` =~ s/\s+//gr || 2;
 
 $| = 1;
-my $mutated_build = 0;  # the build dir holds a mutant's rastercheck
+my $mutated_build = 0;  # the build dir holds a mutant's binaries
+my @targets;            # every target a mutant rebuilds, rebuilt clean at the end
 sub fail_run {
   print STDERR "mutants: $_[0]\n";
   restore();
-  system("cmake --build \"$build\" --target rastercheck -j $jobs > /dev/null 2>&1") if $mutated_build;
+  system("cmake --build \"$build\" --target @targets -j $jobs > /dev/null 2>&1") if $mutated_build;
   exit 2;
 }
 
-# Parse the list: mutant NAME / what TEXT / check ARGS / edit FILE / -LINE / +LINE.
+# Parse the list: mutant NAME / what TEXT / check ARGS or test TARGET FILTER / edit FILE / -LINE / +LINE.
 my (@mutants, $m, $e);
 open(my $in, "<", $list) or stop("cannot read $list: $!");
 while (my $line = <$in>) {
@@ -46,6 +49,7 @@ while (my $line = <$in>) {
   if ($line =~ /^mutant\s+(\S+)$/) { $m = {name => $1, what => "", check => "default hard", edits => []}; push @mutants, $m; $e = undef; }
   elsif ($line =~ /^what\s+(.*)$/ && $m) { $m->{what} .= ($m->{what} ? " " : "") . $1; }
   elsif ($line =~ /^check\s+(.*)$/ && $m) { $m->{check} = $1; }
+  elsif ($line =~ /^test\s+(\w+)\s+(\S+)$/ && $m) { $m->{test} = $1; $m->{filter} = $2; }
   elsif ($line =~ /^edit\s+(\S+)$/ && $m) { $e = {file => $1, from => undef, to => undef}; push @{$m->{edits}}, $e; }
   elsif ($line =~ /^([-+])(?: (.*))?$/ && $e) {
     my $key = $1 eq "-" ? "from" : "to";
@@ -56,6 +60,8 @@ while (my $line = <$in>) {
 close $in;
 @mutants = grep { my $n = $_->{name}; !@only || grep { $_ eq $n } @only } @mutants;
 stop("no mutant in $list matches @only") unless @mutants;
+my %seen;
+@targets = grep { !$seen{$_}++ } map { $_->{test} // "rastercheck" } @mutants;
 
 my %original;  # file -> its clean text, while a mutant is applied
 sub slurp { my ($f) = @_; open(my $h, "<", $f) or fail_run("cannot read $f: $!"); local $/; my $t = <$h>; close $h; return $t; }
@@ -65,7 +71,8 @@ END { restore() if %original; }
 $SIG{INT} = $SIG{TERM} = sub { restore(); exit 2; };
 
 sub build {
-  my $out = `cmake --build "$build" --target rastercheck -j $jobs 2>&1`;
+  my @which = @_ ? @_ : @targets;
+  my $out = `cmake --build "$build" --target @which -j $jobs 2>&1`;
   return ($? == 0, $out);
 }
 # Runs the gate; returns (exit code, failing scenes, first reason).
@@ -77,16 +84,30 @@ sub gate {
   my ($reason) = $out =~ /^\s+- (.*)$/m;
   return ($code, \@failing, $reason // "");
 }
+# Runs a test binary on its filter; returns (exit code, failing tests).
+sub tests {
+  my ($target, $filter) = @_;
+  my $out = `RASTERCHECK_EXE="$build/app/rastercheck" "$build/tests/$target" --gtest_filter='$filter' 2>&1`;
+  my $code = $? >> 8;
+  my %failing = map { $_ => 1 } $out =~ /^\[  FAILED  \] ([A-Za-z_]\w*\.[\w\/]+)/mg;
+  return ($code, [sort keys %failing]);
+}
 
 my ($ok, $log) = build();
 fail_run("the clean source does not build:\n$log") unless $ok;
 my %clean;
-for my $args (map { $_->{check} } @mutants) {
-  next if $clean{$args}++;
-  my ($code, $failing) = gate($args);
-  fail_run("the clean build fails `check $args` (exit $code: @$failing); mutants would prove nothing") if $code != 0;
+for my $mut (@mutants) {
+  if ($mut->{test}) {
+    next if $clean{"$mut->{test} $mut->{filter}"}++;
+    my ($code, $failing) = tests($mut->{test}, $mut->{filter});
+    fail_run("the clean build fails `$mut->{test} $mut->{filter}` (exit $code: @$failing); mutants would prove nothing") if $code != 0;
+  } else {
+    next if $clean{"check $mut->{check}"}++;
+    my ($code, $failing) = gate($mut->{check});
+    fail_run("the clean build fails `check $mut->{check}` (exit $code: @$failing); mutants would prove nothing") if $code != 0;
+  }
 }
-printf "clean build: `check %s` pass%s\n", join("`, `check ", sort keys %clean), keys %clean > 1 ? "" : "es";
+printf "clean build: `%s` pass%s\n", join("`, `", sort keys %clean), keys %clean > 1 ? "" : "es";
 
 my @survivors;
 for my $mut (@mutants) {
@@ -100,9 +121,18 @@ for my $mut (@mutants) {
     $text =~ s/\Q$edit->{from}\E/$edit->{to}/;
     spit($f, $text);
   }
-  my ($built, $out) = build();
+  my ($built, $out) = build($mut->{test} // "rastercheck");
   $mutated_build = 1;
   if (!$built) { restore(); fail_run("mutant $mut->{name} does not compile; update $list:\n$out"); }
+  if ($mut->{test}) {
+    my ($code, $failing) = tests($mut->{test}, $mut->{filter});
+    restore();
+    my $verdict = $code == 1 && @$failing ? "failed the tests" : $code == 0 ? "PASSED THE TESTS" : "exit $code (not a test failure)";
+    printf "%-28s %s: %d of `%s %s` fail%s\n    (%s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{test},
+      $mut->{filter}, @$failing ? ", e.g. $failing->[0]" : "", $mut->{what};
+    push @survivors, $mut->{name} if !($code == 1 && @$failing);
+    next;
+  }
   my ($code, $failing, $reason) = gate($mut->{check});
   restore();
   my $verdict = $code == 1 ? "failed the gate" : $code == 0 ? "PASSED THE GATE" : "exit $code (not the gate's 1)";
@@ -113,8 +143,8 @@ for my $mut (@mutants) {
 ($ok, $log) = build();
 fail_run("the restored source does not build:\n$log") unless $ok;
 if (@survivors) {
-  print "mutants: the gate did not fail ", scalar @survivors, " of ", scalar @mutants, ": @survivors\n";
+  print "mutants: ", scalar @survivors, " of ", scalar @mutants, " passed what should have failed them: @survivors\n";
   exit 1;
 }
-print "mutants: the gate failed all ", scalar @mutants, "\n";
+print "mutants: all ", scalar @mutants, " failed\n";
 exit 0;

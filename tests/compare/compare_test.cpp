@@ -560,6 +560,183 @@ TEST(Compare, FiguresAndHeatmapDoNotDependOnTheThreadCount) {
   }
 }
 
+// compare's decisions at their limits, on synthetic images with diagnostics: each error bound,
+// the edge band, the depth tie and the clip tie pass at exactly their limit and fail one float
+// step beyond it (docs/numerics.md, "A lenient gate"). The values are powers of two and small
+// multiples of them, so that every sum and ratio compare forms is exact. Without these, compare
+// could be made more lenient (a bound doubled, a tie ten times wider, the gate at twice the
+// bound) and no other test would notice: the renders the other tests compare are well inside
+// the limits, and tests/mutants.txt holds these tests to ten such mutants.
+constexpr double kBaryBoundTest = 0x1p-20, kBaryBoundRef = 0x1p-21;    // sum 3 * 2^-21
+constexpr double kDepthBoundTest = 0x1p-20, kDepthBoundRef = 0x1p-21;  // sum 3 * 2^-21
+constexpr double kBandTest = 0x1p-9, kBandRef = 0x1p-12;               // band 9 * 2^-12
+constexpr double kTieTest = 0x1p-20, kResolutionRef = 0x1p-21;         // tie 3 * 2^-21
+constexpr float kFar = 10.0f;  // edge.dist of a pixel far from every edge
+
+// image() with the diagnostics of one path: the rasterizer's (`test`: depth.tie per pixel) or
+// the reference's (its depth resolution in the header).
+Framebuffer diagnosed(bool test) {
+  Framebuffer fb = image();
+  fb.addFloat(channels::kBaryBound, float(test ? kBaryBoundTest : kBaryBoundRef));
+  fb.addFloat(channels::kDepthBound, float(test ? kDepthBoundTest : kDepthBoundRef));
+  fb.addFloat(channels::kEdgeDistance, kFar);
+  fb.attributes[channels::header::kEdgeBand] = test ? "0.001953125" : "0.000244140625";
+  if (test) {
+    fb.addFloat(channels::kDepthTie, float(kTieTest));
+  } else {
+    fb.attributes[channels::header::kDepthResolution] = "4.76837158203125e-07";
+  }
+  return fb;
+}
+
+// A pixel one path drew nothing at: id none, values and diagnostics 0, as both renderers write.
+void empty(Framebuffer& fb, int x, int y) {
+  idAt(fb, x, y) = channels::kNoTriangle;
+  for (const Channel& c : fb.channels()) {
+    if (c.type == ChannelType::kFloat) fb.find(c.name)->floats[std::size_t(y) * kW + std::size_t(x)] = 0.0f;
+  }
+}
+
+CompareReport compared(const Framebuffer& test, const Framebuffer& ref) {
+  return compareImages(test, "t.exr", ref, "r.exr", Thresholds{}, nullptr);
+}
+
+std::string reasons(const CompareReport& r) {
+  std::string all;
+  for (const std::string& reason : r.reasons) all += reason + "; ";
+  return all;
+}
+
+TEST(CompareLimits, TheHeadersAndChannelsHereAreReadAsDiagnostics) {
+  const CompareReport r = compared(diagnosed(true), diagnosed(false));
+  EXPECT_TRUE(r.pass) << reasons(r);
+  EXPECT_TRUE(r.explained);
+  EXPECT_EQ(r.edgeBand, kBandTest + kBandRef);
+  for (const FamilyReport& f : r.families) EXPECT_TRUE(f.bounded) << f.name;
+}
+
+// Each barycentric component, at (3, 1): the bound is 3 * 2^-21, 48 float steps of 0.25 and 24
+// of 0.5. At the bound the ratio is exactly 1 and passes; one step more fails.
+TEST(CompareLimits, EachBarycentricPassesAtItsBoundAndFailsOneStepBeyond) {
+  for (int k = 0; k < 3; ++k) {
+    const double step = k == 2 ? 0x1p-24 : 0x1p-25;
+    const double steps = 3 * 0x1p-21 / step;
+    for (const double n : {steps, steps + 1}) {
+      Framebuffer test = diagnosed(true);
+      at(test, channels::kBary[k], 3, 1) += float(n * step);
+      const CompareReport r = compared(test, diagnosed(false));
+      const FamilyReport& bary = family(r, "bary");
+      EXPECT_EQ(bary.gated, n / steps) << "component " << k << ", " << n << " steps";
+      EXPECT_EQ(r.pass, n == steps) << "component " << k << ", " << n << " steps: " << reasons(r);
+      if (n > steps) {
+        EXPECT_NE(reasons(r).find("bary: error reaches"), std::string::npos) << reasons(r);
+      }
+    }
+  }
+}
+
+// Depth is relative: the bound 3 * 2^-21 of 4 is 12 float steps (2^-21 each) there.
+TEST(CompareLimits, DepthPassesAtItsBoundAndFailsOneStepBeyond) {
+  for (const int n : {12, 13}) {
+    Framebuffer test = diagnosed(true);
+    at(test, channels::kDepth, 5, 2) = float(4.0 + n * 0x1p-21);
+    const CompareReport r = compared(test, diagnosed(false));
+    EXPECT_EQ(family(r, "depth").gated, n / 12.0) << n;
+    EXPECT_EQ(r.pass, n == 12) << n << " steps: " << reasons(r);
+  }
+}
+
+// An attribute's bound is 3 (b_test + b_ref) range + 2^-21 (|a| + range): at uv.x = 2 in a
+// range of 9, 3 * 3 * 2^-21 * 9 + 2^-21 * 11 = 92 * 2^-21, 184 float steps of 2^-22.
+TEST(CompareLimits, AnAttributePassesAtItsBoundAndFailsOneStepBeyond) {
+  for (const int n : {184, 185}) {
+    Framebuffer test = diagnosed(true);
+    at(test, channels::attributeChannel("uv", 0).c_str(), 2, 3) = float(2.0 + n * 0x1p-22);
+    const CompareReport r = compared(test, diagnosed(false));
+    EXPECT_EQ(family(r, "attr.uv").range, 9.0);
+    EXPECT_EQ(family(r, "attr.uv").gated, n / 184.0) << n;
+    EXPECT_EQ(r.pass, n == 184) << n << " steps: " << reasons(r);
+  }
+}
+
+// A pixel where the paths disagree on the triangle, 1 apart in depth (no tie), is explained
+// when either path's edge.dist is within the sum of the headers' bands, and only then.
+TEST(CompareLimits, ADisagreementIsInTheEdgeBandUpToTheSumOfBothBandsFromEitherPath) {
+  const float band = float(kBandTest + kBandRef);
+  const float beyond = std::nextafter(band, 1.0f);
+  for (const bool fromTest : {true, false}) {
+    for (const float distance : {band, beyond}) {
+      Framebuffer test = diagnosed(true), ref = diagnosed(false);
+      idAt(test, 6, 0) = 2;
+      at(test, channels::kDepth, 6, 0) = 5.0f;
+      at(fromTest ? test : ref, channels::kEdgeDistance, 6, 0) = distance;
+      const CompareReport r = compared(test, ref);
+      const bool inBand = distance == band;
+      EXPECT_EQ(r.explanationCounts[int(Explanation::kEdgeBand)], inBand ? 1u : 0u) << fromTest;
+      EXPECT_EQ(r.explanationCounts[int(Explanation::kUnexplained)], inBand ? 0u : 1u) << fromTest;
+      EXPECT_EQ(r.pass, inBand) << (fromTest ? "test" : "reference") << " edge.dist " << distance << ": " << reasons(r);
+      if (!inBand) {
+        EXPECT_NE(reasons(r).find("1 disagreements neither in the edge band nor a depth tie, first at (6,0)"),
+                  std::string::npos)
+            << reasons(r);
+      }
+    }
+  }
+}
+
+// A path that drew nothing at a pixel writes 0 there for its edge distance: that is no
+// distance to an edge, and must not explain the other path's pixel.
+TEST(CompareLimits, AnEmptyPixelsEdgeDistanceExplainsNothing) {
+  for (const bool testDrew : {true, false}) {
+    Framebuffer test = diagnosed(true), ref = diagnosed(false);
+    empty(testDrew ? ref : test, 1, 1);
+    const CompareReport r = compared(test, ref);
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kUnexplained)], 1u) << testDrew;
+    EXPECT_FALSE(r.pass) << testDrew;
+  }
+}
+
+// Two surfaces whose depths differ by at most 2 (tie_test + resolution_ref) times the larger
+// are a depth tie: at 4 that is 6 * 2^-21 * (4 + d), 24 float steps and not 25.
+TEST(CompareLimits, ADisagreementIsADepthTieUpToTwiceBothPathsResolutions) {
+  for (const int n : {24, 25}) {
+    Framebuffer test = diagnosed(true);
+    idAt(test, 4, 2) = 2;
+    at(test, channels::kDepth, 4, 2) = float(4.0 + n * 0x1p-21);
+    const CompareReport r = compared(test, diagnosed(false));
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], n == 24 ? 1u : 0u) << n;
+    EXPECT_EQ(r.pass, n == 24) << n << " steps: " << reasons(r);
+  }
+}
+
+// A pixel only one path drew, off every edge, is a clip tie when its depth lies within
+// 2 tie z of a clipping plane in either image's camera line, and only then. Where the test
+// drew, tie = its depth.tie + the reference's resolution (3 * 2^-21): 24 steps of 2^-21 at 4.
+// Where only the reference drew, the test's depth.tie there is 0: 8 steps.
+TEST(CompareLimits, APixelOnlyOnePathDrewIsAClipTieUpToTwiceTheResolutionsFromEitherPlane) {
+  const std::string camera = "eye=0,0,0 target=0,0,-1 up=0,1,0 fovy=60 ";
+  struct Case {
+    const char* planes;
+    bool inTest, testDrew;
+    int limit;
+  };
+  for (const Case c : {Case{"near=4 far=inf", true, true, 24}, Case{"near=0.5 far=4", true, true, 24},
+                       Case{"near=4 far=inf", false, true, 24}, Case{"near=4 far=inf", true, false, 8},
+                       Case{"near=0.5 far=4", false, false, 8}}) {
+    for (const int n : {c.limit, c.limit + 1}) {
+      Framebuffer test = diagnosed(true), ref = diagnosed(false);
+      (c.inTest ? test : ref).attributes[channels::header::kCamera] = camera + c.planes + " size=10x10";
+      empty(c.testDrew ? ref : test, 7, 8);
+      at(c.testDrew ? test : ref, channels::kDepth, 7, 8) = float(4.0 + n * 0x1p-21);
+      const CompareReport r = compared(test, ref);
+      const std::string what = std::string(c.planes) + (c.inTest ? " in the test's header" : " in the reference's") +
+                               (c.testDrew ? ", test drew" : ", reference drew") + ", " + std::to_string(n) + " steps";
+      EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], n == c.limit ? 1u : 0u) << what;
+      EXPECT_EQ(r.pass, n == c.limit) << what << ": " << reasons(r);
+    }
+  }
+}
+
 TEST(Percentile, UsesNearestRank) {
   std::vector<float> values;
   for (int i = 1000; i >= 1; --i) values.push_back(float(i));
