@@ -159,6 +159,29 @@ TEST(CoverageAudit, FindsPixelsChangedByHand) {
   }
 }
 
+// Two parallel triangles over the same pixels, the second farther by d, at w = 3: their 1/w
+// keys differ by about d / 9, and each key's error bound is 5 u / 3 (float: u = 2^-24). A pixel
+// written with the farther one is lost when the difference exceeds both bounds (d > 30 u), and
+// within them a tie the depth test may decide either way. At half and one and a half times
+// that: so the audit holds the depth test to its keys' error bounds, not to twice them.
+TEST(CoverageAudit, HoldsTheDepthTestToBothKeysErrorBounds) {
+  for (const double times : {0.5, 1.5}) {
+    const float d = float(times * 30.0 * 0x1p-24);
+    const Scene scene = testing::makeTriangleScene({{-1.5f, -1.5f, 0.0f}, {1.5f, -1.5f, 0.0f}, {0.0f, 1.5f, 0.0f},
+                                                    {-1.5f, -1.5f, -d}, {1.5f, -1.5f, -d}, {0.0f, 1.5f, -d}});
+    const RasterOptions options;
+    Framebuffer frame = rasterize(scene, options);
+    ASSERT_EQ(auditCoverage(scene, options, frame).violations(), 0u) << times;
+    auto& ids = frame.find(channels::kTriangleId)->uints;
+    const std::size_t at = std::size_t(frame.height() / 2) * std::size_t(frame.width()) + std::size_t(frame.width() / 2);
+    ASSERT_EQ(ids[at], 0u) << "the nearer triangle, or the lower index in a tie";
+    ids[at] = 1;
+    const CoverageAudit audit = auditCoverage(scene, options, frame);
+    EXPECT_EQ(audit.lost, times > 1.0 ? 1u : 0u) << "farther by " << times << " times both keys' bounds";
+    EXPECT_EQ(audit.notOwned, 0u) << times;
+  }
+}
+
 // The gate explains a disagreement by the edge.dist and depth.tie the rasterizer writes, and
 // passes any error within its bound.bary and bound.depth; the audit holds all four to the
 // set-up that owns the pixel. Shorter edge distances, wider depth ties and wider bounds than
