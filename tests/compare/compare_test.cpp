@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -733,6 +734,47 @@ TEST(CompareLimits, APixelOnlyOnePathDrewIsAClipTieUpToTwiceTheResolutionsFromEi
                                (c.testDrew ? ", test drew" : ", reference drew") + ", " + std::to_string(n) + " steps";
       EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], n == c.limit ? 1u : 0u) << what;
       EXPECT_EQ(r.pass, n == c.limit) << what << ": " << reasons(r);
+    }
+  }
+}
+
+// Without diagnostics (a renderer of your own, --no-diagnostics) compare falls back to fixed
+// limits: each passes at exactly its value and fails just beyond it. Barycentrics and relative
+// depth at 2^-12 (a float step of 0.25 is 2^-25, of 4 is 2^-21); an attribute at 2^-12 of its
+// range (9: the step at uv.y = 8 is 2^-20); each fraction at 2 of the 100 covered pixels.
+TEST(CompareLimits, WithoutDiagnosticsEachFixedLimitPassesAtItsValueAndFailsBeyond) {
+  Thresholds limits;
+  limits.bary = limits.depth = limits.attribute = 0x1p-12;
+  limits.disagreement = limits.coverage = 0.02;
+  struct Case {
+    const char* what;
+    std::function<void(Framebuffer&, bool beyond)> change;
+  };
+  const Case cases[] = {
+      {"bary.b2 (the last)",
+       [](Framebuffer& t, bool beyond) { at(t, channels::kBary[2], 1, 1) = 0.5f + 0x1p-12f + (beyond ? 0x1p-24f : 0.0f); }},
+      {"depth", [](Framebuffer& t, bool beyond) { at(t, channels::kDepth, 2, 2) = 4.0f + 0x1p-10f + (beyond ? 0x1p-21f : 0.0f); }},
+      {"attr.uv.y (the last)",
+       [](Framebuffer& t, bool beyond) {
+         at(t, channels::attributeChannel("uv", 1), 3, 8) = 8.0f + 9.0f * 0x1p-12f + (beyond ? 0x1p-20f : 0.0f);
+       }},
+      {"different triangle",
+       [](Framebuffer& t, bool beyond) {
+         for (int x = 0; x < (beyond ? 3 : 2); ++x) idAt(t, x, 5) = 2;
+       }},
+      {"one side only",
+       [](Framebuffer& t, bool beyond) {
+         for (int x = 0; x < (beyond ? 3 : 2); ++x) idAt(t, x, 6) = channels::kNoTriangle;
+       }},
+  };
+  for (const Case& c : cases) {
+    for (const bool beyond : {false, true}) {
+      Framebuffer test = image();
+      c.change(test, beyond);
+      const CompareReport r = compareImages(test, "t.exr", image(), "r.exr", limits, nullptr);
+      EXPECT_FALSE(r.explained);
+      EXPECT_EQ(r.pass, !beyond) << c.what << (beyond ? " beyond" : " at") << " its limit: " << reasons(r);
+      EXPECT_EQ(r.reasons.size(), beyond ? 1u : 0u) << c.what << ": " << reasons(r);
     }
   }
 }
