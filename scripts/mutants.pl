@@ -3,8 +3,9 @@
 # bug, as a literal edit of the rasterizer's source), apply it, rebuild rastercheck, and require
 # `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. A
 # mutant of the gate itself (compare or the audit made more lenient, which a right rasterizer
-# passes) names a test binary and filter instead (`test TARGET FILTER`), which must fail. Every file is
-# restored afterwards, whatever happens, and everything rebuilt from the clean source.
+# passes) names a test binary and filter instead (`test TARGET FILTER`), which must fail.
+# Every file is restored afterwards, whatever happens, and everything rebuilt from the clean
+# source.
 #
 #   scripts/mutants.pl [--build DIR] [--list FILE] [NAME...]
 #     DIR: $RASTERCHECK_BUILD_DIR or build; FILE: tests/mutants.txt; NAME: only these mutants

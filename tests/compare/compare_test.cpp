@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
+#include "scenes/camera.h"
 #include "scenes/registry.h"
 #include "tests/test_files.h"
 
@@ -567,12 +569,19 @@ TEST(Compare, FiguresAndHeatmapDoNotDependOnTheThreadCount) {
 // multiples of them, so that every sum and ratio compare forms is exact. Without these, compare
 // could be made more lenient (a bound doubled, a tie ten times wider, the gate at twice the
 // bound) and no other test would notice: the renders the other tests compare are well inside
-// the limits, and tests/mutants.txt holds these tests to ten such mutants.
+// the limits, and tests/mutants.txt holds these tests to fifteen such mutants.
 constexpr double kBaryBoundTest = 0x1p-20, kBaryBoundRef = 0x1p-21;    // sum 3 * 2^-21
 constexpr double kDepthBoundTest = 0x1p-20, kDepthBoundRef = 0x1p-21;  // sum 3 * 2^-21
 constexpr double kBandTest = 0x1p-9, kBandRef = 0x1p-12;               // band 9 * 2^-12
 constexpr double kTieTest = 0x1p-20, kResolutionRef = 0x1p-21;         // tie 3 * 2^-21
 constexpr float kFar = 10.0f;  // edge.dist of a pixel far from every edge
+
+// A header number as the rasterizer writes one: every digit, so that compare reads it back exactly.
+std::string exactly(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
 
 // image() with the diagnostics of one path: the rasterizer's (`test`: depth.tie per pixel) or
 // the reference's (its depth resolution in the header).
@@ -581,11 +590,11 @@ Framebuffer diagnosed(bool test) {
   fb.addFloat(channels::kBaryBound, float(test ? kBaryBoundTest : kBaryBoundRef));
   fb.addFloat(channels::kDepthBound, float(test ? kDepthBoundTest : kDepthBoundRef));
   fb.addFloat(channels::kEdgeDistance, kFar);
-  fb.attributes[channels::header::kEdgeBand] = test ? "0.001953125" : "0.000244140625";
+  fb.attributes[channels::header::kEdgeBand] = exactly(test ? kBandTest : kBandRef);
   if (test) {
     fb.addFloat(channels::kDepthTie, float(kTieTest));
   } else {
-    fb.attributes[channels::header::kDepthResolution] = "4.76837158203125e-07";
+    fb.attributes[channels::header::kDepthResolution] = exactly(kResolutionRef);
   }
   return fb;
 }
@@ -715,22 +724,25 @@ TEST(CompareLimits, ADisagreementIsADepthTieUpToTwiceBothPathsResolutions) {
 // drew, tie = its depth.tie + the reference's resolution (3 * 2^-21): 24 steps of 2^-21 at 4.
 // Where only the reference drew, the test's depth.tie there is 0: 8 steps.
 TEST(CompareLimits, APixelOnlyOnePathDrewIsAClipTieUpToTwiceTheResolutionsFromEitherPlane) {
-  const std::string camera = "eye=0,0,0 target=0,0,-1 up=0,1,0 fovy=60 ";
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   struct Case {
-    const char* planes;
+    double zNear, zFar;
     bool inTest, testDrew;
     int limit;
   };
-  for (const Case c : {Case{"near=4 far=inf", true, true, 24}, Case{"near=0.5 far=4", true, true, 24},
-                       Case{"near=4 far=inf", false, true, 24}, Case{"near=4 far=inf", true, false, 8},
-                       Case{"near=0.5 far=4", false, false, 8}}) {
+  for (const Case c : {Case{4.0, kInf, true, true, 24}, Case{0.5, 4.0, true, true, 24}, Case{4.0, kInf, false, true, 24},
+                       Case{4.0, kInf, true, false, 8}, Case{0.5, 4.0, false, false, 8}}) {
+    // The camera line as the renderers write it (Camera::describe, which compare parses).
+    CameraSpec spec = lookAt({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 60.0, c.zNear, kW, kH);
+    spec.zFar = c.zFar;
+    const std::string planes = "near=" + exactly(c.zNear) + " far=" + exactly(c.zFar);
     for (const int n : {c.limit, c.limit + 1}) {
       Framebuffer test = diagnosed(true), ref = diagnosed(false);
-      (c.inTest ? test : ref).attributes[channels::header::kCamera] = camera + c.planes + " size=10x10";
+      (c.inTest ? test : ref).attributes[channels::header::kCamera] = Camera(spec, "limits").describe();
       empty(c.testDrew ? ref : test, 7, 8);
       at(c.testDrew ? test : ref, channels::kDepth, 7, 8) = float(4.0 + n * 0x1p-21);
       const CompareReport r = compared(test, ref);
-      const std::string what = std::string(c.planes) + (c.inTest ? " in the test's header" : " in the reference's") +
+      const std::string what = planes + (c.inTest ? " in the test's header" : " in the reference's") +
                                (c.testDrew ? ", test drew" : ", reference drew") + ", " + std::to_string(n) + " steps";
       EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], n == c.limit ? 1u : 0u) << what;
       EXPECT_EQ(r.pass, n == c.limit) << what << ": " << reasons(r);
