@@ -2,8 +2,9 @@
 # The gate's teeth against wrong rasterizers: for each mutant in tests/mutants.txt (a realistic
 # bug, as a literal edit of the rasterizer's source), apply it, rebuild rastercheck, and require
 # `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. A
-# mutant of the gate itself (compare or the audit made more lenient, which a right rasterizer
-# passes) names a test binary and filter instead (`test TARGET FILTER`), which must fail.
+# mutant of the gate itself (compare, the audit or check's verdict made more lenient, which a
+# right rasterizer passes) names a test binary and filter instead (`test TARGET FILTER`), which
+# must fail.
 # Every file is restored afterwards, whatever happens, and everything rebuilt from the clean
 # source.
 #

@@ -78,6 +78,27 @@ TEST(Cli, CheckWritesRendersHeatmapsAndJsonAndPasses) {
   EXPECT_EQ(j["scenes"].size(), 2u);
 }
 
+// One scene that fails the gate fails the whole check, wherever it stands among scenes that
+// pass. In affine mode floor fails (its checker bends) and depthpairs passes: its quads face
+// the eye, so w is constant over each triangle and affine weights are the perspective ones.
+TEST(Cli, OneFailingSceneFailsTheWholeCheckWhereverItStands) {
+  const rc::testing::TempDir temp;
+  const std::string json = temp.file("r.json"), junit = temp.file("j.xml");
+  for (const auto& [scenes, failing] : {std::pair{"floor depthpairs", 0}, std::pair{"depthpairs floor", 1}}) {
+    const CliRun r = run(std::string("check ") + scenes + " -q --mode affine --json " + json + " --junit " + junit);
+    EXPECT_EQ(r.exitCode, 1) << scenes << "\n" << r.output;
+    EXPECT_NE(r.output.find("2 scene(s): GATE FAILED\n"), std::string::npos) << scenes << "\n" << r.output;
+    const nlohmann::json report = nlohmann::json::parse(rc::testing::readFile(json));
+    EXPECT_EQ(report["verdict"], "fail") << scenes;
+    ASSERT_EQ(report["scenes"].size(), 2u);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(report["scenes"][i]["report"]["verdict"], i == failing ? "fail" : "pass") << scenes << ", scene " << i;
+    }
+    const std::string xml = rc::testing::readFile(junit);
+    EXPECT_NE(xml.find(" tests=\"2\" failures=\"1\""), std::string::npos) << scenes << "\n" << xml;
+  }
+}
+
 // check's files are renamed into place together once all are written; when it stops with an
 // error part way, every file is as it was (a previous run's too) and the folders it made are
 // gone, and a bad scene or bench file makes no folder at all.

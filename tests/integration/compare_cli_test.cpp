@@ -371,6 +371,30 @@ TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
   const CliRun again = run("check cube cube -q --baseline-factor 1 --baseline " + twice);
   EXPECT_EQ(again.exitCode, 0) << again.output;
   EXPECT_EQ(again.output.find("warning"), std::string::npos) << again.output;
+  // In turn, not each to the first: a baseline whose first cube was drawn with 4 subpixel bits
+  // and its second with 8 warns a 4-bit run of its second cube alone.
+  const std::string coarseCube = temp.file("coarse.json"), now2 = temp.file("now2.json");
+  ASSERT_EQ(run("check cube -q --subpixel-bits 4 --json " + coarseCube).exitCode, 0);
+  nlohmann::json mixed = nlohmann::json::parse(rc::testing::readFile(twice));
+  mixed["scenes"][0] = nlohmann::json::parse(rc::testing::readFile(coarseCube))["scenes"][0];
+  const CliRun inTurn =
+      run("check cube cube -q --subpixel-bits 4 --baseline " + temp.write("mixed.json", mixed.dump()) + " --json " + now2);
+  EXPECT_EQ(inTurn.exitCode, 0) << inTurn.output;
+  EXPECT_NE(inTurn.output.find("2 scene(s): all pass; 1 with warnings\n"), std::string::npos) << inTurn.output;
+  const nlohmann::json heldInTurn = nlohmann::json::parse(rc::testing::readFile(now2));
+  EXPECT_TRUE(heldInTurn["scenes"][0]["report"]["warnings"].empty()) << heldInTurn["scenes"][0]["report"]["warnings"];
+  EXPECT_NE(heldInTurn["scenes"][1]["report"]["warnings"].dump().find("different triangle at "), std::string::npos)
+      << heldInTurn["scenes"][1]["report"]["warnings"];
+  // A scene file whose triangle count changed since the baseline is not held to its figures.
+  const std::string obj = temp.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), objBase = temp.file("obj.json");
+  ASSERT_EQ(run("check " + obj + " -q --json " + objBase).exitCode, 0);
+  temp.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  const CliRun grown = run("check " + obj + " -q --baseline-factor 1 --baseline " + objBase);
+  EXPECT_EQ(grown.exitCode, 0) << grown.output;
+  EXPECT_NE(grown.output.find("    warning: the baseline's scene had 1 triangles, this one 2: not held to it\n"),
+            std::string::npos)
+      << grown.output;
+  EXPECT_EQ(rc::testing::occurrences(grown.output, "warning: "), 1) << grown.output;
   // A factor above the growth keeps it quiet.
   const CliRun loose = run("check cube sphere -q --subpixel-bits 4 --baseline " + base + " --baseline-factor 100");
   EXPECT_EQ(loose.output.find("warning"), std::string::npos) << loose.output;

@@ -2,7 +2,13 @@
 // and the double-precision rasterizer reproduces the reference.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "app/check.h"
+#include "core/channels.h"
 #include "scenes/registry.h"
 #include "tests/test_scenes.h"
 
@@ -137,6 +143,51 @@ TEST(Gate, DoublePrecisionRasterizerReproducesTheReference) {
     // Both write float: what remains is at most one rounding of the same double value.
     EXPECT_LE(r.report.families[0].stats.max, 1.2e-7) << name;
     EXPECT_LE(r.report.families[1].stats.max, 1.2e-7) << name;
+  }
+}
+
+// Every kind of violation the coverage audit counts fails the gate on its own, as a reason that
+// names it; an audit that found none, with its edge band exactly at its limit, gives none. (The
+// rasterizer mutants reach most of these only through a wrong rasterizer, so a reason dropped
+// here would pass every right one unseen.)
+TEST(Gate, EachKindOfAuditViolationIsAReasonOfItsOwn) {
+  CoverageAudit clean;
+  clean.covered = 1000;
+  clean.onEdge = 10;
+  clean.diagnosed = 1000;
+  clean.edgeBand = clean.edgeBandLimit = 0.003;
+  EXPECT_TRUE(app::auditReasons(clean).empty());
+  EXPECT_EQ(clean.violations(), 0u);
+  const std::vector<std::pair<std::function<void(CoverageAudit&)>, std::string>> kinds = {
+      {[](CoverageAudit& a) { a.notOwned = 2, a.firstNotOwned = {3, 4, 10, 11}; },
+       "coverage audit: 2 pixel(s) written by a triangle that does not cover the centre under the top-left rule "
+       "(first at (3, 4): triangle 10 written, triangle 11 owns it)"},
+      {[](CoverageAudit& a) { a.lost = 1, a.firstLost = {5, 6, channels::kNoTriangle, 12}; },
+       "coverage audit: 1 pixel(s) left empty or to a farther triangle where a nearer one covers the centre "
+       "(first at (5, 6): nothing written, triangle 12 nearer)"},
+      {[](CoverageAudit& a) { a.offGrid = 3, a.firstOffGrid = 13; },
+       "coverage audit: 3 triangle corner(s) snapped to a grid point other than the one nearest the raster "
+       "position (first: triangle 13)"},
+      {[](CoverageAudit& a) { a.edgeDistanceShort = 4, a.firstEdgeDistanceShort = {7, 8, 14, 0.125, 0.25}; },
+       "coverage audit: 4 pixel(s) whose edge.dist falls short"},
+      {[](CoverageAudit& a) { a.boundWide = 5, a.firstBoundWide = {9, 10, 15, 2e-6, 1e-6}; },
+       "coverage audit: 5 pixel(s) whose bound.bary or bound.depth exceeds its triangle's error bound, which "
+       "would pass larger errors (first found at (9, 10), triangle 15: 2e-06 written, 1e-06 the bound)"},
+      {[](CoverageAudit& a) { a.edgeBand = 0.00390625; },
+       "coverage audit: the header's edge band of 0.00391 px is wider than snapping and the transform allow (at "
+       "most 0.003 px)"},
+      {[](CoverageAudit& a) { a.cameraMismatch = true; },
+       "coverage audit: the header's camera line (rastercheck.camera) is not the scene's"},
+      {[](CoverageAudit& a) { a.depthTieWide = 6, a.firstDepthTieWide = {11, 12, 16, 4e-5, 4e-6}; },
+       "coverage audit: 6 pixel(s) whose depth.tie exceeds its depth key's error bound"},
+  };
+  for (const auto& [set, reason] : kinds) {
+    CoverageAudit audit = clean;
+    set(audit);
+    EXPECT_GT(audit.violations(), 0u) << reason;
+    const std::vector<std::string> found = app::auditReasons(audit);
+    ASSERT_EQ(found.size(), 1u) << reason;
+    EXPECT_EQ(found[0].substr(0, reason.size()), reason);
   }
 }
 
