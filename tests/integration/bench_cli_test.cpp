@@ -245,6 +245,51 @@ TEST(Cli, BenchCountsEachSpeedupAgainstTheBetterBuildQuality) {
   }
 }
 
+// bench's error columns are compare's figures for the same frames: its default, affine and
+// 4-bit rows against `compare` of the images `render` makes with those settings and the same
+// reference (Embree avx2, low build, as render traces). And with an even number of runs, a
+// median is the mean of the middle two.
+TEST(Cli, BenchErrorColumnsAreComparesFiguresForTheSameFrames) {
+  const rc::testing::TempDir temp;
+  const std::string json = temp.file("b.json"), reference = temp.file("ref.exr"), raster = temp.file("r.exr"),
+                    report = temp.file("c.json");
+  const CliRun bench = run("bench cube --runs 2 -q --embree-isa avx2 --embree-build low --json " + json);
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  const nlohmann::json rows = nlohmann::json::parse(rc::testing::readFile(json))["rows"];
+  ASSERT_EQ(run("render cube --backend reference -o " + reference).exitCode, 0);
+  int compared = 0;
+  for (const auto& row : rows) {
+    for (const char* runs : {"raster_ms", "reference_trace_ms"}) {
+      const std::vector<double> v = row.at(std::string(runs) + "_runs");
+      ASSERT_EQ(v.size(), 2u);
+      EXPECT_EQ(row[runs].get<double>(), 0.5 * (v[0] + v[1])) << runs;
+    }
+    const std::string setting = row["setting"];
+    const char* flags = setting == "perspective-float-8bit"   ? ""
+                        : setting == "affine-float-8bit"      ? " --mode affine"
+                        : setting == "perspective-float-4bit" ? " --subpixel-bits 4"
+                                                              : nullptr;
+    if (!flags) continue;
+    ASSERT_EQ(run("render cube -o " + raster + flags).exitCode, 0) << setting;
+    const CliRun compare = run("compare " + raster + " " + reference + " --json " + report);
+    ASSERT_EQ(compare.exitCode, setting == "affine-float-8bit" ? 1 : 0) << setting << "\n" << compare.output;
+    const nlohmann::json c = nlohmann::json::parse(rc::testing::readFile(report));
+    EXPECT_EQ(row["bary_max_error"], c["families"]["bary"]["max"]) << setting;
+    EXPECT_EQ(row["bary_p999_error"], c["families"]["bary"]["p999"]) << setting;
+    EXPECT_EQ(row["disagreement_fraction"], c["disagreement_fraction"]) << setting;
+    // Figures that tell the columns apart: affine's error spreads below its maximum, and 4 bits
+    // of snapping move some edges over pixel centres.
+    if (setting == "affine-float-8bit") {
+      EXPECT_LT(row["bary_p999_error"].get<double>(), row["bary_max_error"].get<double>());
+    }
+    if (setting == "perspective-float-4bit") {
+      EXPECT_GT(row["disagreement_fraction"].get<double>(), 0.0);
+    }
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3);
+}
+
 // The chart's format follows its name: .png writes a PNG; a name that is neither .svg nor .png
 // is a usage error before anything runs, and nothing is written. The command line's arithmetic
 // joins the sweep as a row of its own.
