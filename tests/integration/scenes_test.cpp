@@ -147,9 +147,9 @@ TEST(Gate, DoublePrecisionRasterizerReproducesTheReference) {
 }
 
 // Every kind of violation the coverage audit counts fails the gate on its own, as a reason that
-// names it; an audit that found none, with its edge band exactly at its limit, gives none. (The
-// rasterizer mutants reach most of these only through a wrong rasterizer, so a reason dropped
-// here would pass every right one unseen.)
+// names it; an audit that found none, with its edge band exactly at its limit, gives none. (Only
+// the rasterizer mutants reached most of these reasons, through a wrong rasterizer: dropping one
+// passed every test of a right one.)
 TEST(Gate, EachKindOfAuditViolationIsAReasonOfItsOwn) {
   CoverageAudit clean;
   clean.covered = 1000;
