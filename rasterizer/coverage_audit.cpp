@@ -264,23 +264,98 @@ int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::
   return count;
 }
 
+namespace {
+
+// Bounds, from the scene and the camera alone, on where the rasterizer's double transform may put
+// a vertex it draws. Each clip coordinate it computes lies within clipError of the exact
+// transform (clip.h), and so within twice that of the one computed here.
+struct DrawnVertexBounds {
+  glm::dmat4 clipFromWorld;
+  double clipError, zNear, zFar, guard, side;
+
+  // How far the rasterizer may have moved a vertex drawn at clip w >= wLow with |ndc| <= ndc,
+  // in pixels (the rasterizer's rasterShift, docs/numerics.md): (side / 2) clipError (1 + ndc)
+  // / w, plus the viewport mapping's 2^-50 |raster|, |raster| <= (|ndc| + 1) side / 2.
+  double shift(double wLow, double ndc) const {
+    return 0.5 * side * clipError * (1.0 + ndc) / wLow + 0x1p-50 * (0.5 * (ndc + 1.0) * side + 1.0);
+  }
+  // The worst case for anything drawn: w at the near plane, |ndc| at the guard band.
+  double worstShift() const { return shift(zNear, guard); }
+
+  glm::dvec4 clipOf(const glm::vec3& p) const { return clipFromWorld * glm::dvec4(glm::dvec3(p), 1.0); }
+  double slack(const glm::dvec4& c) const {
+    return 2.0 * clipError + 0x1p-40 * (std::fabs(c.x) + std::fabs(c.y) + std::fabs(c.w)) * (1.0 + guard);
+  }
+  // Surely inside the view volume for the rasterizer too (outcode 0), or surely outside plane i
+  // (ClipVolume::distance, its outcode bit i set), whatever its rounding.
+  bool surelyInside(const glm::dvec4& c) const {
+    const double e = slack(c);
+    return c.w - e >= zNear && (std::isinf(zFar) || c.w + e <= zFar) &&
+           std::max(std::fabs(c.x), std::fabs(c.y)) + e <= guard * (c.w - e);
+  }
+  unsigned surelyOutside(const glm::dvec4& c) const {
+    const double e = slack(c), low = c.w - e, high = c.w + e;
+    return unsigned(high < zNear) | unsigned(!std::isinf(zFar) && low > zFar) << 1 |
+           unsigned(c.x - e > guard * std::max(high, 0.0)) << 2 | unsigned(c.x + e < -guard * std::max(high, 0.0)) << 3 |
+           unsigned(c.y - e > guard * std::max(high, 0.0)) << 4 | unsigned(c.y + e < -guard * std::max(high, 0.0)) << 5;
+  }
+  // A vertex the rasterizer finds inside: its w at least near, and at least the w here less the
+  // slack; |ndc| at most the guard band's.
+  double vertexShift(const glm::dvec4& c) const {
+    const double e = slack(c), w = std::max(c.w - e, zNear);
+    return shift(w, std::min(guard, (std::max(std::fabs(c.x), std::fabs(c.y)) + e) / w));
+  }
+  // Any point of a clipped triangle that is drawn: clip coordinates are linear over the
+  // triangle, so its w is at least the vertices' least (and near); with every w positive, its
+  // |ndc| is a weighted mean of theirs, at most their largest (and the guard band's).
+  double clippedShift(const glm::dvec4 (&c)[3]) const {
+    double w = std::numeric_limits<double>::infinity(), ndc = 0.0;
+    bool ahead = true;
+    for (const glm::dvec4& v : c) {
+      const double e = slack(v), low = v.w - e;
+      w = std::min(w, low);
+      ahead = ahead && low > 0.0;
+      if (ahead) ndc = std::max(ndc, (std::max(std::fabs(v.x), std::fabs(v.y)) + e) / low);
+    }
+    w = std::max(w, zNear);
+    return shift(w, ahead ? std::min(ndc, guard) : guard);
+  }
+};
+
+}  // namespace
+
 double edgeBandCeiling(const Scene& scene, const RasterOptions& options) {
   const int bits = options.subpixelBits;
   const double side = std::max(scene.camera.width(), scene.camera.height());
   const double snapping = bits == 0 ? 0.0 : 0.7072 * std::ldexp(1.0, -bits);
-  // The guard band (clip.h): |x|, |y| <= guard w. In pixels, a clip coordinate's error at w
-  // and |ndc| <= guard is (side / 2) error (1 + guard) / w, plus the viewport mapping's 2^-50
-  // |raster|; no vertex drawn is nearer than the near plane. The largest world coordinate is
-  // taken here from the scene, not from the frame's transform.
-  const double guard = 2.0 * guardBandPixels(bits) / side;
+  // The largest world coordinate is taken here from the scene, not from the frame's transform.
   double largest = 1.0;
   for (const glm::vec3& p : scene.mesh.positions) {
     largest = std::max({largest, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
   }
-  const double clipError = clipErrorBound(scene.camera.clipFromWorld(), largest);
-  const double shift =
-      0.5 * side * clipError * (1.0 + guard) / scene.camera.zNear() + 0x1p-50 * (0.5 * (guard + 1.0) * side + 1.0);
-  return (snapping + 2.0 * shift) * (1.0 + 0x1p-40);  // the slack: a clipped vertex's w may round below near
+  const glm::dmat4 clipFromWorld = scene.camera.clipFromWorld();
+  const DrawnVertexBounds bounds{clipFromWorld,     clipErrorBound(clipFromWorld, largest), scene.camera.zNear(),
+                                 scene.camera.zFar(), 2.0 * guardBandPixels(bits) / side, side};
+  // The rasterizer bounds every vertex inside the view volume at once, from the nearest w and
+  // the guard band, when that adds at most a thousandth of snapping's steps (Pipeline::edgeBand);
+  // otherwise it takes them one by one, as this does, and the vertices of every clipped
+  // sub-triangle, which lie in their triangle.
+  double shift = std::min(bounds.worstShift(), 0.5e-3 * snapping);
+  const auto& positions = scene.mesh.positions;
+  std::vector<bool> inside(positions.size());  // a bit a vertex: no page faults to speak of at 1M triangles
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const glm::dvec4 c = bounds.clipOf(positions[v]);
+    inside[v] = bounds.surelyInside(c);
+    if (!bounds.surelyOutside(c)) shift = std::max(shift, bounds.vertexShift(c));
+  }
+  for (const glm::uvec3& t : scene.mesh.triangles) {
+    if (inside[t.x] && inside[t.y] && inside[t.z]) continue;
+    const glm::dvec4 c[3] = {bounds.clipOf(positions[t.x]), bounds.clipOf(positions[t.y]), bounds.clipOf(positions[t.z])};
+    if (bounds.surelyOutside(c[0]) & bounds.surelyOutside(c[1]) & bounds.surelyOutside(c[2])) continue;
+    shift = std::max(shift, bounds.clippedShift(c));
+  }
+  // The slack: a clipped vertex's w may round below near, or below its triangle's least w.
+  return (snapping + 2.0 * shift) * (1.0 + 0x1p-30);
 }
 
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame) {

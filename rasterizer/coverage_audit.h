@@ -84,8 +84,9 @@ int cornersOffGrid(const std::int32_t x[3], const std::int32_t y[3], const glm::
 
 // The widest edge band a frame of `scene` rendered with `options` may claim (docs/numerics.md,
 // "Disagreements"): snapping's sqrt(2)/2 grid steps, plus twice the farthest the double transform
-// may move any vertex drawn, bounded for every position at or beyond the near plane inside the
-// guard band, from the scene's largest coordinate and the camera alone.
+// may move any vertex drawn, from the scene's own transform of its vertices and the camera alone:
+// vertex by vertex inside the view volume, and for a triangle the view volume clips, at the
+// least w of its vertices (or near) and the largest |ndc| (or the guard band's).
 double edgeBandCeiling(const Scene& scene, const RasterOptions& options);
 
 // Audits `frame`, a frame Rasterizer::render made of `scene` with `options` (its tri.id channel).

@@ -275,6 +275,21 @@ TEST(CoverageAudit, HoldsTheHeadersEdgeBandToSnappingAndTheTransform) {
   }
 }
 
+// At the default 8 bits the ceiling is the band of every scene of `check default hard` within a
+// thousandth, so a band only 1% wider fails each. Until session 39 it took the transform's shift
+// at its worst for anything drawn (w at the near plane, |ndc| at the guard band), which let a
+// band 20 times wide pass on `huge` and 127 times on `faroffset:offset=1e7`.
+TEST(CoverageAudit, TheEdgeBandCeilingIsTheBandWithinAThousandthAtEightBits) {
+  const RasterOptions options;
+  for (const std::string& spec : expandSceneGroups({"default", "hard"})) {
+    const Scene scene = makeBuiltinScene(spec);
+    const double band = std::stod(rasterize(scene, options).attributes.at(channels::header::kEdgeBand));
+    const double ceiling = edgeBandCeiling(scene, options);
+    EXPECT_LE(band, ceiling) << spec;
+    EXPECT_LE(ceiling, 1.0011 * band) << spec;
+  }
+}
+
 // compare explains a pixel one path drew at the near or far plane by the planes in either
 // image's camera line; the frame's must be the scene's.
 TEST(CoverageAudit, HoldsTheHeadersCameraLineToTheScene) {
