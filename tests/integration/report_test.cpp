@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "app/html_report.h"
 #include "compare/report.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
@@ -101,6 +102,89 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
                       rc::formatNumber(first["speedup_max"].get<double>()) + "</td>"),
             std::string::npos);
   EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
+}
+
+// A scene of made-up figures, each one distinct, so that a figure shown in another's place, or
+// not at all, is seen.
+rc::app::ReportScene madeUpScene(const std::string& name, bool pass) {
+  rc::app::ReportScene s;
+  s.name = s.stem = name;
+  s.triangles = 12;
+  rc::CompareReport& r = s.report;
+  r.width = 8, r.height = 4;
+  r.pass = pass;
+  if (!pass) r.reasons = {"bary: max error 0.5 over its bound", "depth: 2 NaN <pixels>"};
+  r.coveredEither = 29;
+  r.classCounts[int(rc::PixelClass::kSameTriangle)] = 19;
+  r.classCounts[int(rc::PixelClass::kDifferentTriangle)] = 5;
+  r.classCounts[int(rc::PixelClass::kTestOnly)] = 3;
+  r.classCounts[int(rc::PixelClass::kReferenceOnly)] = 2;
+  r.disagreementFraction = 0.125, r.coverageFraction = 0.0625;
+  r.explained = true;
+  r.explanationCounts[int(rc::Explanation::kEdgeBand)] = 11;
+  r.explanationCounts[int(rc::Explanation::kDepthTie)] = 13;
+  r.explanationCounts[int(rc::Explanation::kUnexplained)] = 17;
+  r.edgeBand = 0.0055;
+  rc::FamilyReport bary;
+  bary.name = "bary";
+  bary.bounded = true;
+  bary.threshold = 1.0, bary.gated = 0.75;
+  bary.stats.max = 0.00125, bary.stats.mean = 0.00025, bary.stats.rms = 0.00035, bary.stats.p50 = 4.5e-05;
+  bary.stats.p99 = 0.00055, bary.stats.p999 = 0.00065, bary.stats.nanCount = 1, bary.stats.infCount = 2;
+  bary.stats.worst = {6, 1, 0.25, 0.375};
+  r.families = {bary};
+  return s;
+}
+
+// Every scene's own verdict, reasons and figures, each in its place, and the summary over all
+// of them whatever their order. Until session 39 a report that gave every scene a PASS badge,
+// counted the failures from the last scene alone, showed no unexplained disagreements or the
+// mean in the max column passed every test.
+TEST(HtmlReport, ShowsEachScenesVerdictReasonsAndFiguresInTheirPlaces) {
+  rc::testing::TempDir dir;
+  for (const char* folder : {"report", "one", "two"}) fs::create_directories(dir.file(folder));
+  for (const bool failFirst : {true, false}) {
+    std::vector<rc::app::ReportScene> scenes = {madeUpScene("fails", false), madeUpScene("passes", true)};
+    if (!failFirst) std::swap(scenes[0], scenes[1]);
+    rc::app::writeHtmlReport(dir.file("report"), scenes, "settings");
+    const std::string html = rc::testing::readFile(fs::path(dir.file("report")) / "index.html");
+    EXPECT_NE(html.find("<span class=\"fail\">FAIL</span> 1 of 2 scenes fail the gate</p>"), std::string::npos) << html;
+    const std::size_t second = html.find("<section class=\"scene\">", html.find("<section class=\"scene\">") + 1);
+    ASSERT_NE(second, std::string::npos);
+    const std::string failing = failFirst ? html.substr(0, second) : html.substr(second);
+    const std::string passing = failFirst ? html.substr(second) : html.substr(0, second);
+    EXPECT_NE(failing.find("<h2>fails <span class=\"fail\">FAIL</span></h2>"), std::string::npos) << failing;
+    EXPECT_NE(passing.find("<h2>passes <span class=\"pass\">PASS</span></h2>"), std::string::npos) << passing;
+    EXPECT_NE(failing.find("<ul>\n<li>bary: max error 0.5 over its bound</li>\n<li>depth: 2 NaN &lt;pixels&gt;</li>\n</ul>"),
+              std::string::npos)
+        << failing;
+    EXPECT_EQ(failing.find("Every family is within its threshold"), std::string::npos);
+    EXPECT_NE(passing.find("Every family is within its threshold"), std::string::npos);
+    for (const std::string& section : {failing, passing}) {
+      EXPECT_NE(section.find("<p>12 triangles, 8x4;"), std::string::npos) << section;
+      EXPECT_NE(section.find("<tr><td>29 covered</td><td>19</td><td>5</td><td>3</td><td>2</td><td>0.125</td>"
+                             "<td>0.0625</td></tr>"),
+                std::string::npos)
+          << section;
+      EXPECT_NE(section.find("<p>Disagreements: 11 in the edge band (0.0055 px), 13 depth ties, 17 unexplained"),
+                std::string::npos)
+          << section;
+      EXPECT_NE(section.find("<tr><td>bary</td><td>0.00125</td><td>0.00025</td><td>0.00035</td><td>4.5e-05</td>"
+                             "<td>0.00055</td><td>0.00065</td><td>3</td><td>0.75 of bound</td><td>1</td>"
+                             "<td>(6,1) 0.25 / 0.375</td></tr>"),
+                std::string::npos)
+          << section;
+    }
+  }
+  // One scene alone, and two that pass.
+  rc::app::writeHtmlReport(dir.file("one"), {madeUpScene("fails", false)}, "settings");
+  EXPECT_NE(rc::testing::readFile(fs::path(dir.file("one")) / "index.html")
+                .find("<span class=\"fail\">FAIL</span> the scene fails the gate</p>"),
+            std::string::npos);
+  rc::app::writeHtmlReport(dir.file("two"), {madeUpScene("a", true), madeUpScene("b", true)}, "settings");
+  EXPECT_NE(rc::testing::readFile(fs::path(dir.file("two")) / "index.html")
+                .find("<span class=\"pass\">PASS</span> all 2 scenes pass the gate</p>"),
+            std::string::npos);
 }
 
 TEST(HtmlReport, LoadsInChromiumWithoutConsoleErrorsAndShowsItsImages) {
