@@ -3,8 +3,8 @@
 # bug, as a literal edit of the rasterizer's source), apply it, rebuild rastercheck, and require
 # `rastercheck check` (its scenes: by default `default hard`) to exit 1, the gate failed. A
 # mutant of the gate itself (compare, the audit or check's verdict made more lenient, which a
-# right rasterizer passes), of bench's columns or of the HTML report, names a test binary and
-# filter instead (`test TARGET FILTER`), which must fail.
+# right rasterizer passes), of bench's columns, of the HTML report or of the figures the
+# commands print, names a test binary and filter instead (`test TARGET FILTER`), which must fail.
 # Every file is restored afterwards, whatever happens, and everything rebuilt from the clean
 # source.
 #

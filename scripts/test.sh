@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build, and run the whole test suite through ctest; then hold the gate to the wrong
-# rasterizers of tests/mutants.txt, and the tests of compare, the audit, check, bench and the
-# HTML report to their lenient mutants there (scripts/mutants.pl); fuzz every input parser for a bounded time
+# rasterizers of tests/mutants.txt, and the tests of compare, the audit, check, bench, the
+# HTML report and the printed figures to their lenient mutants there (scripts/mutants.pl); fuzz every input parser for a bounded time
 # (scripts/fuzz.sh) and run the whole suite again under ASan + UBSan.
 #   scripts/test.sh           everything (what CI runs)
 #   scripts/test.sh --quick   the Release suite only
@@ -13,7 +13,7 @@ scripts/build.sh
 (cd "${RASTERCHECK_BUILD_DIR:-build}" && ctest --output-on-failure -j "$jobs")
 [[ "${1:-}" == "--quick" ]] && exit 0
 
-echo "== the gate against wrong rasterizers and itself made lenient (tests/mutants.txt): each must fail check default hard, or the tests of compare, the audit, check, bench and the report"
+echo "== the gate against wrong rasterizers and itself made lenient (tests/mutants.txt): each must fail check default hard, or the tests of compare, the audit, check, bench, the report and the printed figures"
 perl scripts/mutants.pl --build "${RASTERCHECK_BUILD_DIR:-build}"
 
 echo "== fuzzing every input parser (${FUZZ_SECONDS:-30}s each)"

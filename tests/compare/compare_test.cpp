@@ -20,6 +20,7 @@
 #include "raytracer_ref/reference.h"
 #include "scenes/camera.h"
 #include "scenes/registry.h"
+#include "tests/made_up_report.h"
 #include "tests/test_files.h"
 
 namespace rc {
@@ -522,6 +523,71 @@ TEST(Compare, JsonReportCarriesVerdictCountsAndFamilies) {
   for (const char* key : {"max", "mean", "rms", "p99", "p999"}) {
     EXPECT_TRUE(j["families"]["depth"].contains(key)) << key;
   }
+}
+
+// Each figure of a report in its own column of the table and under its own name in the JSON, on
+// made-up figures that are all distinct. Until session 39 a table that printed the maximum as
+// the p99.9 (of the errors or of their ratio to the bound) or the depth ties as unexplained, and
+// JSON that wrote the p99.9 as the p99, the mean as the rms or the ulps' maximum as their p99.9,
+// passed every test.
+TEST(Report, TableShowsEachFigureInItsColumn) {
+  EXPECT_EQ(reportToTable(testing::madeUpReport(false)),
+            "pixels 8x4: 29 covered by either; same triangle 19, different 5 (0.125), test only 3, reference only 2\n"
+            "disagreements: 11 in the edge band (0.0055 px), 13 depth ties, 17 unexplained\n"
+            "family               max      mean     p99.9  max ulps max/bound   n+i     limit p99.9/bnd  "
+            "largest error at: test / ref\n"
+            "bary             0.00125   0.00025   0.00065      42.5      0.75     3     bound     0.625  "
+            "(6,1) 0.25 / 0.375\n"
+            "attr.uv            0.002    0.0003    0.0007      52.5         -     0 0.004*2.5         -  "
+            "(2,3) 1.5 / 1.5\n"
+            "verdict: FAIL\n"
+            "  - bary: max error 0.5 over its bound\n"
+            "  - depth: 2 NaN <pixels>\n");
+}
+
+TEST(Report, JsonCarriesEachFigureUnderItsName) {
+  const nlohmann::json j = reportToJson(testing::madeUpReport(false));
+  EXPECT_EQ(j["verdict"], "fail");
+  EXPECT_EQ(j["pixels"], (nlohmann::json{{"both_empty", 3}, {"same_triangle", 19}, {"different_triangle", 5},
+                                         {"test_only", 3}, {"reference_only", 2}, {"covered_either", 29}}));
+  EXPECT_EQ(j["disagreement_fraction"], 0.125);
+  EXPECT_EQ(j["coverage_fraction"], 0.0625);
+  EXPECT_EQ(j["disagreements"],
+            (nlohmann::json{{"edge_band", 11}, {"depth_tie", 13}, {"unexplained", 17}, {"edge_band_pixels", 0.0055}}));
+  EXPECT_EQ(j["families"]["bary"],
+            (nlohmann::json{{"unit", "absolute"},
+                            {"count", 24},
+                            {"nan", 1},
+                            {"inf", 2},
+                            {"max", 0.00125},
+                            {"mean", 0.00025},
+                            {"rms", 0.00035},
+                            {"p50", 4.5e-05},
+                            {"p99", 0.00055},
+                            {"p999", 0.00065},
+                            {"threshold", 1.0},
+                            {"gated", 0.75},
+                            {"bounded", true},
+                            {"ulps", {{"max", 42.5}, {"p999", 37.5}}},
+                            {"bound_ratio", {{"max", 0.75}, {"p999", 0.625}, {"worst", {{"x", 5}, {"y", 2}}}}},
+                            {"worst", {{"x", 6}, {"y", 1}, {"test", 0.25}, {"reference", 0.375}}}}));
+  EXPECT_EQ(j["families"]["attr.uv"],
+            (nlohmann::json{{"unit", "absolute"},
+                            {"count", 27},
+                            {"nan", 0},
+                            {"inf", 0},
+                            {"max", 0.002},
+                            {"mean", 0.0003},
+                            {"rms", 0.0004},
+                            {"p50", 5e-05},
+                            {"p99", 0.0006},
+                            {"p999", 0.0007},
+                            {"threshold", 0.004},
+                            {"gated", 0.0008},
+                            {"range", 2.5},
+                            {"bounded", false},
+                            {"ulps", {{"max", 52.5}, {"p999", 47.5}}},
+                            {"worst", {{"x", 2}, {"y", 3}, {"test", 1.5}, {"reference", 1.498}}}}));
 }
 
 // The families are measured in parallel, each in pixel order: every figure and every heatmap

@@ -22,6 +22,7 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
+#include "compare/report.h"
 #include "core/exr_io.h"
 #include "scenes/registry.h"
 #include "tests/integration/cli_run.h"
@@ -96,6 +97,51 @@ TEST(Cli, OneFailingSceneFailsTheWholeCheckWhereverItStands) {
     }
     const std::string xml = rc::testing::readFile(junit);
     EXPECT_NE(xml.find(" tests=\"2\" failures=\"1\""), std::string::npos) << scenes << "\n" << xml;
+  }
+}
+
+// check's table prints each scene's own figures, as its JSON has them. Until session 39 a table
+// that printed the barycentric maximum as the p99.9, the depth p99.9 as the maximum, or the
+// one-side-only fraction as the disagreement passed every test. In affine mode the sphere's
+// figures tell those columns apart.
+TEST(Cli, CheckTablePrintsEachScenesFiguresFromItsReport) {
+  const rc::testing::TempDir temp;
+  const std::string json = temp.file("r.json");
+  const CliRun r = run("check cube sphere -q --mode affine --json " + json);
+  ASSERT_EQ(r.exitCode, 1) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(rc::testing::readFile(json));
+  ASSERT_EQ(report["scenes"].size(), 2u);
+  for (const nlohmann::json& scene : report["scenes"]) {
+    const std::string name = scene["scene"];
+    const std::size_t at = r.output.find("\n" + name + " ");
+    ASSERT_NE(at, std::string::npos) << name << "\n" << r.output;
+    std::istringstream line(r.output.substr(at + 1, r.output.find('\n', at + 1) - at - 1));
+    std::vector<std::string> cells{std::istream_iterator<std::string>(line), {}};
+    ASSERT_EQ(cells.size(), 10u) << line.str();
+    const nlohmann::json& families = scene["report"]["families"];
+    const auto number = [](const nlohmann::json& v) { return rc::formatNumber(v.get<double>()); };
+    const auto oneDecimal = [](const nlohmann::json& v) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.1f", v.get<double>());
+      return std::string(text);
+    };
+    const std::vector<std::string> expected = {
+        name,
+        std::to_string(scene["triangles"].get<std::size_t>()),
+        std::to_string(scene["report"]["width"].get<int>()) + "x" + std::to_string(scene["report"]["height"].get<int>()),
+        scene["report"]["verdict"] == "pass" ? "PASS" : "FAIL",
+        number(families["bary"]["max"]),
+        number(families["bary"]["p999"]),
+        number(families["depth"]["max"]),
+        number(scene["report"]["disagreement_fraction"]),
+        oneDecimal(scene["raster_ms"]),
+        oneDecimal(scene["reference_ms"])};
+    EXPECT_EQ(cells, expected) << line.str();
+    if (name == "sphere") {
+      EXPECT_NE(number(families["bary"]["max"]), number(families["bary"]["p999"]));
+      EXPECT_NE(number(families["depth"]["max"]), number(families["depth"]["p999"]));
+      EXPECT_NE(number(scene["report"]["disagreement_fraction"]), number(scene["report"]["coverage_fraction"]));
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 
 #include "app/html_report.h"
 #include "compare/report.h"
+#include "tests/made_up_report.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
@@ -104,35 +105,11 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
 }
 
-// A scene of made-up figures, each one distinct, so that a figure shown in another's place, or
-// not at all, is seen.
 rc::app::ReportScene madeUpScene(const std::string& name, bool pass) {
   rc::app::ReportScene s;
   s.name = s.stem = name;
   s.triangles = 12;
-  rc::CompareReport& r = s.report;
-  r.width = 8, r.height = 4;
-  r.pass = pass;
-  if (!pass) r.reasons = {"bary: max error 0.5 over its bound", "depth: 2 NaN <pixels>"};
-  r.coveredEither = 29;
-  r.classCounts[int(rc::PixelClass::kSameTriangle)] = 19;
-  r.classCounts[int(rc::PixelClass::kDifferentTriangle)] = 5;
-  r.classCounts[int(rc::PixelClass::kTestOnly)] = 3;
-  r.classCounts[int(rc::PixelClass::kReferenceOnly)] = 2;
-  r.disagreementFraction = 0.125, r.coverageFraction = 0.0625;
-  r.explained = true;
-  r.explanationCounts[int(rc::Explanation::kEdgeBand)] = 11;
-  r.explanationCounts[int(rc::Explanation::kDepthTie)] = 13;
-  r.explanationCounts[int(rc::Explanation::kUnexplained)] = 17;
-  r.edgeBand = 0.0055;
-  rc::FamilyReport bary;
-  bary.name = "bary";
-  bary.bounded = true;
-  bary.threshold = 1.0, bary.gated = 0.75;
-  bary.stats.max = 0.00125, bary.stats.mean = 0.00025, bary.stats.rms = 0.00035, bary.stats.p50 = 4.5e-05;
-  bary.stats.p99 = 0.00055, bary.stats.p999 = 0.00065, bary.stats.nanCount = 1, bary.stats.infCount = 2;
-  bary.stats.worst = {6, 1, 0.25, 0.375};
-  r.families = {bary};
+  s.report = rc::testing::madeUpReport(pass);
   return s;
 }
 
@@ -172,6 +149,11 @@ TEST(HtmlReport, ShowsEachScenesVerdictReasonsAndFiguresInTheirPlaces) {
       EXPECT_NE(section.find("<tr><td>bary</td><td>0.00125</td><td>0.00025</td><td>0.00035</td><td>4.5e-05</td>"
                              "<td>0.00055</td><td>0.00065</td><td>3</td><td>0.75 of bound</td><td>1</td>"
                              "<td>(6,1) 0.25 / 0.375</td></tr>"),
+                std::string::npos)
+          << section;
+      EXPECT_NE(section.find("<tr><td>attr.uv</td><td>0.002</td><td>0.0003</td><td>0.0004</td><td>5e-05</td>"
+                             "<td>0.0006</td><td>0.0007</td><td>0</td><td>0.0008 of range</td><td>0.004</td>"
+                             "<td>(2,3) 1.5 / 1.5</td></tr>"),
                 std::string::npos)
           << section;
     }
