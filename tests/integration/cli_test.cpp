@@ -22,8 +22,10 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
+#include "app/html_report.h"
 #include "compare/report.h"
 #include "core/exr_io.h"
+#include "rasterizer/coverage_audit.h"
 #include "scenes/registry.h"
 #include "tests/integration/cli_run.h"
 #include "tests/run_command.h"
@@ -260,6 +262,32 @@ TEST(Cli, WrongFillRulesFailTheGateThroughTheCoverageAudit) {
   const CliRun bench = run("bench edges --fill-rule inclusive");
   EXPECT_EQ(bench.exitCode, 2) << bench.output;
   EXPECT_NE(bench.output.find("--fill-rule inclusive"), std::string::npos) << bench.output;
+}
+
+// check's JSON carries the audit's own figures, each under its name: those of the same audit run
+// here on the same frame. Until session 39 an edge band limit written from the band itself, or
+// every covered pixel counted as diagnosed, passed every test.
+TEST(Cli, CheckJsonCarriesTheCoverageAuditsOwnFigures) {
+  const rc::testing::TempDir temp;
+  const std::string json = temp.file("r.json");
+  const rc::Scene scene = rc::makeBuiltinScene("cube");
+  for (const bool diagnostics : {true, false}) {
+    const CliRun r = run(std::string("check cube -q --json ") + json + (diagnostics ? "" : " --no-diagnostics"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json audit = nlohmann::json::parse(rc::testing::readFile(json))["scenes"][0]["coverage_audit"];
+    rc::RasterOptions options;
+    options.diagnostics = diagnostics;
+    const rc::CoverageAudit own = rc::auditCoverage(scene, options, rc::rasterize(scene, options));
+    EXPECT_EQ(audit["covered"], own.covered);
+    EXPECT_EQ(audit["on_edge"], own.onEdge);
+    EXPECT_EQ(audit["diagnosed"], own.diagnosed);
+    EXPECT_EQ(audit["edge_band"], own.edgeBand);
+    EXPECT_EQ(audit["edge_band_limit"], own.edgeBandLimit);
+    // Figures that tell the fields apart.
+    EXPECT_GT(own.covered, 0u);
+    EXPECT_EQ(own.diagnosed, diagnostics ? own.covered : 0u);
+    EXPECT_LT(own.edgeBand, own.edgeBandLimit);
+  }
 }
 
 TEST(Cli, MissingInputIsExitFour) {
@@ -628,9 +656,29 @@ TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
   const fs::path obj = temp.path() / "a&b<c>.obj";
   std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
   const fs::path failing = temp.path() / "failing.xml", passing = temp.path() / "passing.xml";
-  const CliRun affine = run("check cube floor --mode affine -q --junit " + failing.string());
+  const fs::path json = temp.path() / "failing.json";
+  const CliRun affine = run("check cube floor --mode affine -q --junit " + failing.string() + " --json " + json.string());
   EXPECT_EQ(affine.exitCode, 1) << affine.output;
   const std::string f = text(failing);
+  // Each case's failure lists every reason, and its output gives the scene's own figures, as the
+  // JSON has them (until session 39 the first reason alone, or the maximum as the p99.9, passed).
+  const nlohmann::json scenes = nlohmann::json::parse(text(json))["scenes"];
+  ASSERT_EQ(scenes.size(), 2u);
+  for (const nlohmann::json& scene : scenes) {
+    const nlohmann::json& r = scene["report"];
+    std::string reasons;
+    for (const std::string reason : r["reasons"]) reasons += reason + "\n";
+    EXPECT_GE(r["reasons"].size(), 2u);
+    EXPECT_NE(f.find("\">" + rc::app::escapeMarkup(reasons) + "</failure>"), std::string::npos) << reasons << "\n" << f;
+    const auto number = [](const nlohmann::json& v) { return rc::formatNumber(v.get<double>()); };
+    const std::string summary = std::to_string(scene["triangles"].get<std::size_t>()) + " triangles, " +
+                                std::to_string(r["width"].get<int>()) + "x" + std::to_string(r["height"].get<int>()) +
+                                ": bary max " + number(r["families"]["bary"]["max"]) + ", p99.9 " +
+                                number(r["families"]["bary"]["p999"]) + "; depth max " +
+                                number(r["families"]["depth"]["max"]) + "; disagreement " +
+                                number(r["disagreement_fraction"]) + "; raster ";
+    EXPECT_NE(f.find("<system-out>" + summary), std::string::npos) << summary << "\n" << f;
+  }
   EXPECT_EQ(f.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"rastercheck check\" tests=\"2\" failures=\"2\"", 0), 0u) << f;
   EXPECT_EQ(count(f, "<testcase "), 2);
   EXPECT_EQ(count(f, "<failure "), 2);
