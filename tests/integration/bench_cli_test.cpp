@@ -13,7 +13,6 @@
 #include <embree3/rtcore_config.h>
 #include <nlohmann/json.hpp>
 
-#include "compare/report.h"
 #include "core/parallel.h"
 #include "rasterizer/rasterizer.h"
 #include "raytracer_ref/reference.h"
@@ -271,30 +270,24 @@ TEST(Cli, BenchErrorColumnsAreComparesFiguresForTheSameFrames) {
   const auto column = [&](const std::string& name) {
     return std::size_t(std::find(csvRows[0].begin(), csvRows[0].end(), name) - csvRows[0].begin());
   };
-  const auto fourDigits = [](const nlohmann::json& v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", v.get<double>());
-    return std::string(text);
-  };
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const nlohmann::json& row = rows[i];
     const std::string setting = row["setting"];
     const std::string mark = setting + (row["default"].get<bool>() ? " *" : "") + " ";
     const std::size_t at = bench.output.find(mark);
     ASSERT_NE(at, std::string::npos) << setting << "\n" << bench.output;
-    std::istringstream line(bench.output.substr(at, bench.output.find('\n', at) - at));
-    const std::vector<std::string> cells{std::istream_iterator<std::string>(line), {}};
-    ASSERT_GE(cells.size(), 4u) << line.str();
+    const std::vector<std::string> cells = cellsOfLine(bench.output, at);
+    ASSERT_GE(cells.size(), 4u) << bench.output;
     const std::vector<std::string> table(cells.end() - 4, cells.end() - 1);
-    EXPECT_EQ(table, (std::vector<std::string>{rc::formatNumber(row["bary_max_error"].get<double>()),
-                                               rc::formatNumber(row["bary_p999_error"].get<double>()),
-                                               rc::formatNumber(row["disagreement_fraction"].get<double>())}))
-        << line.str();
+    EXPECT_EQ(table, (std::vector<std::string>{printed(row["bary_max_error"]),
+                                               printed(row["bary_p999_error"]),
+                                               printed(row["disagreement_fraction"])}))
+        << setting << "\n" << bench.output;
     const std::vector<std::string>& cellsCsv = csvRows[i + 1];
     ASSERT_EQ(cellsCsv.size(), csvRows[0].size()) << setting;
     EXPECT_EQ(cellsCsv[column("setting")], setting);
     for (const char* name : {"bary_max_error", "bary_p999_error", "disagreement_fraction", "raster_ms", "speedup"}) {
-      EXPECT_EQ(cellsCsv[column(name)], fourDigits(row[name])) << setting << ": " << name;
+      EXPECT_EQ(cellsCsv[column(name)], printed(row[name], "%.4g")) << setting << ": " << name;
     }
   }
   ASSERT_EQ(run("render cube --backend reference -o " + reference).exitCode, 0);

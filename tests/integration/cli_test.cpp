@@ -23,7 +23,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/html_report.h"
-#include "compare/report.h"
 #include "core/exr_io.h"
 #include "rasterizer/coverage_audit.h"
 #include "scenes/registry.h"
@@ -117,32 +116,25 @@ TEST(Cli, CheckTablePrintsEachScenesFiguresFromItsReport) {
     const std::string name = scene["scene"];
     const std::size_t at = r.output.find("\n" + name + " ");
     ASSERT_NE(at, std::string::npos) << name << "\n" << r.output;
-    std::istringstream line(r.output.substr(at + 1, r.output.find('\n', at + 1) - at - 1));
-    std::vector<std::string> cells{std::istream_iterator<std::string>(line), {}};
-    ASSERT_EQ(cells.size(), 10u) << line.str();
+    const std::vector<std::string> cells = cellsOfLine(r.output, at + 1);
+    ASSERT_EQ(cells.size(), 10u) << r.output;
     const nlohmann::json& families = scene["report"]["families"];
-    const auto number = [](const nlohmann::json& v) { return rc::formatNumber(v.get<double>()); };
-    const auto oneDecimal = [](const nlohmann::json& v) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.1f", v.get<double>());
-      return std::string(text);
-    };
     const std::vector<std::string> expected = {
         name,
         std::to_string(scene["triangles"].get<std::size_t>()),
         std::to_string(scene["report"]["width"].get<int>()) + "x" + std::to_string(scene["report"]["height"].get<int>()),
         scene["report"]["verdict"] == "pass" ? "PASS" : "FAIL",
-        number(families["bary"]["max"]),
-        number(families["bary"]["p999"]),
-        number(families["depth"]["max"]),
-        number(scene["report"]["disagreement_fraction"]),
-        oneDecimal(scene["raster_ms"]),
-        oneDecimal(scene["reference_ms"])};
-    EXPECT_EQ(cells, expected) << line.str();
+        printed(families["bary"]["max"]),
+        printed(families["bary"]["p999"]),
+        printed(families["depth"]["max"]),
+        printed(scene["report"]["disagreement_fraction"]),
+        printed(scene["raster_ms"], "%.1f"),
+        printed(scene["reference_ms"], "%.1f")};
+    EXPECT_EQ(cells, expected) << r.output;
     if (name == "sphere") {
-      EXPECT_NE(number(families["bary"]["max"]), number(families["bary"]["p999"]));
-      EXPECT_NE(number(families["depth"]["max"]), number(families["depth"]["p999"]));
-      EXPECT_NE(number(scene["report"]["disagreement_fraction"]), number(scene["report"]["coverage_fraction"]));
+      EXPECT_NE(printed(families["bary"]["max"]), printed(families["bary"]["p999"]));
+      EXPECT_NE(printed(families["depth"]["max"]), printed(families["depth"]["p999"]));
+      EXPECT_NE(printed(scene["report"]["disagreement_fraction"]), printed(scene["report"]["coverage_fraction"]));
     }
   }
 }
@@ -670,13 +662,12 @@ TEST(Cli, CheckWritesJUnitXmlWithACasePerScene) {
     for (const std::string reason : r["reasons"]) reasons += reason + "\n";
     EXPECT_GE(r["reasons"].size(), 2u);
     EXPECT_NE(f.find("\">" + rc::app::escapeMarkup(reasons) + "</failure>"), std::string::npos) << reasons << "\n" << f;
-    const auto number = [](const nlohmann::json& v) { return rc::formatNumber(v.get<double>()); };
     const std::string summary = std::to_string(scene["triangles"].get<std::size_t>()) + " triangles, " +
                                 std::to_string(r["width"].get<int>()) + "x" + std::to_string(r["height"].get<int>()) +
-                                ": bary max " + number(r["families"]["bary"]["max"]) + ", p99.9 " +
-                                number(r["families"]["bary"]["p999"]) + "; depth max " +
-                                number(r["families"]["depth"]["max"]) + "; disagreement " +
-                                number(r["disagreement_fraction"]) + "; raster ";
+                                ": bary max " + printed(r["families"]["bary"]["max"]) + ", p99.9 " +
+                                printed(r["families"]["bary"]["p999"]) + "; depth max " +
+                                printed(r["families"]["depth"]["max"]) + "; disagreement " +
+                                printed(r["disagreement_fraction"]) + "; raster ";
     EXPECT_NE(f.find("<system-out>" + summary), std::string::npos) << summary << "\n" << f;
   }
   EXPECT_EQ(f.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"rastercheck check\" tests=\"2\" failures=\"2\"", 0), 0u) << f;
