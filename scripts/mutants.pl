@@ -113,6 +113,7 @@ printf "clean build: `%s` pass%s\n", join("`, `", sort keys %clean), keys %clean
 
 my @survivors;
 for my $mut (@mutants) {
+  my $started = time;
   for my $edit (@{$mut->{edits}}) {
     my $f = $edit->{file};
     fail_run("$list: mutant $mut->{name}: an edit of $f lacks its - or + lines") unless defined $edit->{from} && defined $edit->{to};
@@ -130,16 +131,16 @@ for my $mut (@mutants) {
     my ($code, $failing) = tests($mut->{test}, $mut->{filter});
     restore();
     my $verdict = $code == 1 && @$failing ? "failed the tests" : $code == 0 ? "PASSED THE TESTS" : "exit $code (not a test failure)";
-    printf "%-28s %s: %d of `%s %s` fail%s\n    (%s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{test},
-      $mut->{filter}, @$failing ? ", e.g. $failing->[0]" : "", $mut->{what};
+    printf "%-28s %s: %d of `%s %s` fail%s\n    (%s; %d s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{test},
+      $mut->{filter}, @$failing ? ", e.g. $failing->[0]" : "", $mut->{what}, time - $started;
     push @survivors, $mut->{name} if !($code == 1 && @$failing);
     next;
   }
   my ($code, $failing, $reason) = gate($mut->{check});
   restore();
   my $verdict = $code == 1 ? "failed the gate" : $code == 0 ? "PASSED THE GATE" : "exit $code (not the gate's 1)";
-  printf "%-28s %s: %d scene(s) of `check %s` fail%s\n    (%s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{check},
-    @$failing ? ", e.g. $failing->[0]: $reason" : "", $mut->{what};
+  printf "%-28s %s: %d scene(s) of `check %s` fail%s\n    (%s; %d s)\n", $mut->{name}, $verdict, scalar @$failing, $mut->{check},
+    @$failing ? ", e.g. $failing->[0]: $reason" : "", $mut->{what}, time - $started;
   push @survivors, $mut->{name} if $code != 1;
 }
 ($ok, $log) = build();
