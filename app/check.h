@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "app/settings.h"
 #include "compare/compare.h"
 #include "core/framebuffer.h"
 #include "rasterizer/coverage_audit.h"

@@ -6,6 +6,7 @@
 #include "app/bench.h"
 #include "app/bench_chart.h"
 #include "app/commands.h"
+#include "app/options.h"
 #include "scenes/registry.h"
 #include "app/progress.h"
 #include "compare/report.h"

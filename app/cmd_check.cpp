@@ -8,11 +8,14 @@
 #include <set>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "app/bench.h"
 #include "app/check.h"
 #include "app/commands.h"
 #include "app/html_report.h"
 #include "app/junit.h"
+#include "app/options.h"
 #include "app/progress.h"
 #include "compare/baseline.h"
 #include "compare/heatmap_png.h"

@@ -2,6 +2,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "app/commands.h"
 #include "app/junit.h"
 #include "app/options.h"

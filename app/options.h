@@ -1,5 +1,5 @@
 // Options shared by several subcommands, declared once: rasterizer settings, the reference's
-// settings, gate thresholds, scene loading and output-path checks.
+// settings, gate thresholds and output-path checks (the settings themselves: settings.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,27 +8,12 @@
 #include <utility>
 #include <vector>
 
+#include "app/settings.h"
 #include "compare/compare.h"
 #include "core/atomic_file.h"
 #include "core/exr_io.h"
-#include "rasterizer/rasterizer.h"
-#include "raytracer_ref/reference.h"
-#include "scenes/scene.h"
 
 namespace rc::app {
-
-struct RenderSettings {
-  RasterOptions raster;
-  ReferenceOptions reference;
-  int threads = 0;
-  std::string size;        // "WxH" override of the scene's image size, or empty
-  std::string eye, target, up;  // "x,y,z" camera overrides, or empty
-  double fovYDegrees = 0;  // vertical field of view override; 0 keeps the scene's
-  std::string camera;      // a glTF file's camera (index or name); empty: the first it places
-  std::vector<std::string> attributes;  // narrows the attributes written; empty keeps all
-  long long maxTriangles = 20'000'000;  // larger scenes are refused (memory stays bounded)
-  int maxImageSide = 16384;             // larger images are refused (OpenEXR's limit is 16384)
-};
 
 std::string lowerCase(std::string text);
 
@@ -85,13 +70,6 @@ void noteIdleFailOnWarnings(const Thresholds& thresholds, const BaselineUse& bas
 void addExrCompressionOption(CLI::App* command, ExrCompression& compression);
 // --threads N, 0..256 (0 = all cores); `what` says what the threads do.
 void addThreadsOption(CLI::App* command, int& threads, const std::string& what);
-
-// Propagates the thread count and checks the combination; throws usageError.
-void finishRenderSettings(RenderSettings& settings);
-
-// A built-in scene (NAME[:key=value,...]), an OBJ or glTF file or a scene file, with the
-// command line's camera, size and attribute overrides applied.
-Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
 // An output file and the option that names it ("--json"); an empty path: not asked for.
 // `extension` (".exr"): the format written, which a name with another extension contradicts.
@@ -162,9 +140,5 @@ class WrittenOutputs {
 // Output file stem of a scene: a file's own stem ("../data/spot.obj" -> "spot"), a built-in
 // scene's spec made safe ("blob:tris=1000" -> "blob_tris-1000"); "-2", "-3"... on collisions.
 std::string fileStem(const std::string& scene, std::set<std::string>& used);
-
-// Milliseconds elapsed since `start` (steady clock).
-double millisecondsSince(long long startNanoseconds);
-long long nowNanoseconds();
 
 }  // namespace rc::app

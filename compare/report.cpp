@@ -7,9 +7,15 @@
 #include <sstream>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 
 namespace rc {
+
+std::string jsonDocument(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
 
 std::string formatNumber(double value) {
   if (std::isnan(value)) return "nan";

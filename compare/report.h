@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "compare/compare.h"
 
@@ -18,9 +18,7 @@ nlohmann::json reportToJson(const CompareReport& report);
 // A JSON document as the commands write it: indented, ending in a newline. A string that is
 // not valid UTF-8 (a file name may be any bytes) has its bad bytes replaced by U+FFFD, where
 // nlohmann::json would otherwise throw after all the work was done.
-inline std::string jsonDocument(const nlohmann::json& j) {
-  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-}
+std::string jsonDocument(const nlohmann::json& j);
 std::string reportToTable(const CompareReport& report);
 
 // "1.23e-07": compact, locale-independent.

@@ -10,6 +10,8 @@
 #include <limits>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "compare/baseline.h"
 #include "compare/compare.h"
 #include "compare/heatmap_png.h"
