@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "compare/report.h"
