@@ -14,6 +14,7 @@
 
 #include "compare/compare.h"
 #include "compare/report.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"

@@ -3,6 +3,7 @@
 
 #include "compare/report.h"
 #include "core/channels.h"
+#include "core/clock.h"
 #include "core/preview.h"
 #include "raytracer_ref/reference.h"
 

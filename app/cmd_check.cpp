@@ -22,6 +22,7 @@
 #include "compare/report.h"
 #include "core/atomic_file.h"
 #include "core/channels.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"

@@ -11,6 +11,7 @@
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"
+#include "core/clock.h"
 #include "core/exr_io.h"
 #include "core/png_io.h"
 

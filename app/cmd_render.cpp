@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "app/options.h"
+#include "core/clock.h"
 #include "core/exr_io.h"
 
 namespace rc::app {

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <chrono>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -492,14 +491,6 @@ void WrittenOutputs::makeFolder(const std::string& dir) {
     throw ioError(dir, std::string("cannot write into the output folder: ") + std::strerror(errno));
   }
 }
-
-long long nowNanoseconds() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-double millisecondsSince(long long start) { return double(nowNanoseconds() - start) * 1e-6; }
 
 std::string fileStem(const std::string& scene, std::set<std::string>& used) {
   const fs::path path(scene);

@@ -32,8 +32,4 @@ void finishRenderSettings(RenderSettings& settings);
 // command line's camera, size and attribute overrides applied.
 Scene loadScene(const std::string& spec, const RenderSettings& settings);
 
-// Milliseconds elapsed since `start` (steady clock).
-double millisecondsSince(long long startNanoseconds);
-long long nowNanoseconds();
-
 }  // namespace rc::app

@@ -2,7 +2,6 @@
 #include "rasterizer/coverage_audit.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "core/channels.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/plane_allocator.h"
 #include "rasterizer/clip.h"
@@ -359,7 +359,7 @@ double edgeBandCeiling(const Scene& scene, const RasterOptions& options) {
 }
 
 CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, const Framebuffer& frame) {
-  const auto start = std::chrono::steady_clock::now();
+  const long long start = nowNanoseconds();
   const Channel* ids = frame.find(channels::kTriangleId);
   if (!ids || frame.width() != scene.camera.width() || frame.height() != scene.camera.height()) {
     throw internalError("auditCoverage: the frame is not a render of " + scene.name);
@@ -412,7 +412,7 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
   }
   const auto camera = frame.attributes.find(channels::header::kCamera);
   audit.cameraMismatch = camera == frame.attributes.end() || camera->second != scene.camera.describe();
-  audit.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  audit.ms = millisecondsSince(start);
   return audit;
 }
 

@@ -16,13 +16,13 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <type_traits>
 #include <cmath>
 #include <limits>
 
 #include "core/channels.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
@@ -78,10 +78,6 @@ namespace {
 
 using kernel::kTileShift;
 using kernel::kTileSize;
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 constexpr std::size_t kTrianglesPerBlock = 8192;
 
@@ -553,7 +549,7 @@ struct Pipeline {
 
   // Stages 2 and 3: set-ups per block and their bins.
   void setupAndBin(StageTimes& times) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const long long t0 = nowNanoseconds();
     const std::size_t count = scene.mesh.triangles.size();
     const int blocks = int((count + blockSize - 1) / blockSize);
     const std::size_t tiles = std::size_t(tileCount());
@@ -584,7 +580,7 @@ struct Pipeline {
       }
     });
     times.setupMs = millisecondsSince(t0);
-    const auto t1 = std::chrono::steady_clock::now();
+    const long long t1 = nowNanoseconds();
     frame.blockCoverage.resize(std::size_t(blocks));
     frame.blockClipped.resize(std::size_t(blocks));
     // Each tile's list holds its set-ups in (block, index) order, so a block's place in it is
@@ -679,12 +675,12 @@ struct FrameFacts {
 template <typename Real>
 FrameFacts renderFrame(const Scene& scene, const RasterOptions& options, Frame<Real>& frame, Framebuffer& fb,
                  StageTimes& times) {
-  auto t0 = std::chrono::steady_clock::now();
+  long long t0 = nowNanoseconds();
   Pipeline<Real> p(scene, options, frame);
   p.transform();
   times.transformMs = millisecondsSince(t0);
   p.setupAndBin(times);
-  t0 = std::chrono::steady_clock::now();
+  t0 = nowNanoseconds();
 
   if (fb.width() != p.width || fb.height() != p.height) fb.recycle(p.width, p.height, {});
   const kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
@@ -818,7 +814,7 @@ double writeOutPass(Framebuffer& fb, std::uint32_t value, const RasterOptions& o
   }
   const int count = int(planes.size()), width = fb.width(), height = fb.height();
   const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
-  const auto start = std::chrono::steady_clock::now();
+  const long long start = nowNanoseconds();
   parallelFor(tilesX * tilesY, options.threads, [&](int tile) {
     const int x0 = tile % tilesX * kTileSize, y0 = tile / tilesX * kTileSize;
     const int n = std::min(width, x0 + kTileSize) - x0;
