@@ -238,6 +238,10 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.setupMs = median(l.setup);
       row.binMs = median(l.bin);
       row.tilesMs = median(l.tiles);
+      row.transformRuns = l.transform;
+      row.setupRuns = l.setup;
+      row.binRuns = l.bin;
+      row.tilesRuns = l.tiles;
       row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
       row.storeFloorMs = median(floor);
       row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
@@ -331,6 +335,8 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
     row["reference_builds"] = builds;
     row["raster_ms_runs"] = r.rasterRuns;
     row["reference_trace_ms_runs"] = r.traceRuns;
+    row["stage_ms_runs"] = {{"transform", r.transformRuns}, {"setup", r.setupRuns}, {"bin", r.binRuns},
+                            {"tiles", r.tilesRuns}};
     list.push_back(row);
   }
   const nlohmann::json about = {{"cpu", machine.cpu},

@@ -37,6 +37,8 @@ struct BenchRow {
   double rasterMsMin = 0, rasterMsMax = 0;  // the spread of the runs: how noisy the machine was
   // Medians over runs of the rasterizer's stages (Rasterizer::stageTimes).
   double transformMs = 0, setupMs = 0, binMs = 0, tilesMs = 0;
+  // Each stage of every timed frame, in round order: round r's stages ran inside rasterRuns[r].
+  std::vector<double> transformRuns, setupRuns, binRuns, tilesRuns;
   // Median time to write the setting's output as `render -o` does (ZIP EXR, through a
   // temporary file), measured for the default setting only; negative for the others.
   double exrWriteMs = -1;
