@@ -37,8 +37,10 @@ phase "Release suite"
 echo "== the sanitizer build (ASan + UBSan) starts in the background: build-sanitize/build from a copy in build-sanitize/src"
 mkdir -p build-sanitize/src
 tar -cf - --exclude=./.git --exclude='./build*' --exclude=./out . | tar -xf - -C build-sanitize/src
+# Its tests read ../shared/data beside this checkout, not beside the copy.
 setsid --wait bash -c "cmake -S build-sanitize/src -B build-sanitize/build -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DRASTERCHECK_SANITIZE=ON > /dev/null && nice -n 10 cmake --build build-sanitize/build -j $jobs" \
+  -DRASTERCHECK_SANITIZE=ON -DRASTERCHECK_SHARED_DATA_DIR='$PWD/../shared/data' > /dev/null &&
+  nice -n 10 cmake --build build-sanitize/build -j $jobs" \
   > build-sanitize/build.log 2>&1 &
 sanitizer_build=$!
 sanitizer_start=$SECONDS
@@ -62,7 +64,5 @@ if ((build_status != 0)); then
 fi
 echo "== the sanitizer build took $((SECONDS - sanitizer_start)) s, beside the mutants and the fuzzing"
 phase "sanitizer build (what was left of it)"
-# The copy's tests find ../shared/data beside this checkout, not beside the copy.
-(cd build-sanitize/build && RASTERCHECK_SHARED_DATA="${RASTERCHECK_SHARED_DATA:-$PWD/../../../shared/data}" \
-   ctest --output-on-failure -j "$jobs")
+(cd build-sanitize/build && ctest --output-on-failure -j "$jobs")
 phase "sanitizer suite"
