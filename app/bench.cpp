@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -278,18 +279,65 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
   return rows;
 }
 
+std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCache>& caches) {
+  // The fields of the first processor block, values trimmed.
+  std::map<std::string, std::string> field;
+  std::istringstream in(cpuinfo);
+  for (std::string line; std::getline(in, line) && !line.empty();) {
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string key = line.substr(0, colon), rest = line.substr(colon + 1);
+    const std::size_t keyEnd = key.find_last_not_of(" \t"), start = rest.find_first_not_of(" \t");
+    if (keyEnd == std::string::npos) continue;
+    field.emplace(key.substr(0, keyEnd + 1), start == std::string::npos ? "" : rest.substr(start));
+  }
+  const auto value = [&](const char* key) {
+    const auto it = field.find(key);
+    return it == field.end() ? std::string() : it->second;
+  };
+  std::string cpu = value("model name").empty() ? "unknown" : value("model name");
+  // The model name alone can be a family's (a virtual machine's "AMD EPYC"): the numbers tell
+  // its generations apart.
+  std::vector<std::string> details;
+  if (!value("cpu family").empty() && !value("model").empty()) {
+    std::string id = "family " + value("cpu family") + ", model " + value("model");
+    if (!value("stepping").empty()) id += ", stepping " + value("stepping");
+    details.push_back(id);
+  }
+  std::string sizes;
+  for (const CpuCache& cache : caches) sizes += (sizes.empty() ? "" : ", ") + cache.name + " " + cache.size;
+  if (!sizes.empty()) details.push_back(sizes);
+  for (std::size_t i = 0; i < details.size(); ++i) cpu += (i == 0 ? " (" : "; ") + details[i];
+  return details.empty() ? cpu : cpu + ")";
+}
+
+namespace {
+
+// The data and unified caches of CPU 0 as sysfs lists them, by level: "L1d", "L2", "L3".
+std::vector<CpuCache> cpu0Caches() {
+  std::vector<CpuCache> caches;
+  const auto read = [](const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::string text;
+    std::getline(in, text);
+    return text;
+  };
+  for (int index = 0;; ++index) {
+    const std::filesystem::path dir = "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(index);
+    const std::string level = read(dir / "level"), type = read(dir / "type"), size = read(dir / "size");
+    if (level.empty()) break;
+    if (type == "Instruction" || size.empty()) continue;
+    caches.push_back({"L" + level + (type == "Data" ? "d" : ""), size});
+  }
+  return caches;
+}
+
+}  // namespace
+
 BenchMachine benchMachine() {
   BenchMachine m;
-  m.cpu = "unknown";
   std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);) {
-    const std::size_t colon = line.find(':');
-    if (line.rfind("model name", 0) == 0 && colon != std::string::npos) {
-      const std::size_t start = line.find_first_not_of(" \t", colon + 1);
-      if (start != std::string::npos) m.cpu = line.substr(start);
-      break;
-    }
-  }
+  m.cpu = cpuDescription(std::string(std::istreambuf_iterator<char>(cpuinfo), {}), cpu0Caches());
   m.logicalCpus = resolveThreadCount(0);
   m.widestKernelIsa = kernelIsaName(resolveKernelIsa(KernelIsa::kAuto));
   m.fastestEmbreeIsa = fastestEmbreeIsa();
@@ -303,11 +351,16 @@ BenchMachine benchMachine() {
   return m;
 }
 
-std::string describe(const BenchMachine& m) {
+std::string describeHardware(const BenchMachine& m) {
   return m.cpu + ", " + std::to_string(m.logicalCpus) + " logical CPU" + (m.logicalCpus == 1 ? "" : "s") +
-         " (kernels up to " + m.widestKernelIsa + ", Embree " + m.fastestEmbreeIsa + "); " + m.compiler +
-         ", Embree " + m.embree + ", rastercheck " + m.rastercheck;
+         " (kernels up to " + m.widestKernelIsa + ", Embree " + m.fastestEmbreeIsa + ")";
 }
+
+std::string describeBuilds(const BenchMachine& m) {
+  return m.compiler + ", Embree " + m.embree + ", rastercheck " + m.rastercheck;
+}
+
+std::string describe(const BenchMachine& m) { return describeHardware(m) + "; " + describeBuilds(m); }
 
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine) {
   nlohmann::json list = nlohmann::json::array();

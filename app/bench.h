@@ -91,8 +91,17 @@ std::string timingPhrase(int runs);
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step);
 
-// What the figures were measured on: the CPU (its model name from /proc/cpuinfo, "unknown" where
-// there is none), its logical CPUs, the widest kernels and the fastest Embree mode it runs,
+// A cache of a CPU: "L1d", "L2", "L3", and its size as sysfs writes it ("1024K").
+struct CpuCache {
+  std::string name, size;
+};
+// The CPU as the text of /proc/cpuinfo names its first processor, with its caches:
+// "AMD EPYC (family 26, model 2, stepping 1; L1d 48K, L2 1024K, L3 32768K)". The model name
+// alone ("unknown" where there is none) can be a whole family's in a virtual machine; the
+// family, model and stepping tell its generations apart, and the caches say what fits.
+std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCache>& caches);
+
+// What the figures were measured on: the CPU (cpuDescription of this machine), its logical CPUs, the widest kernels and the fastest Embree mode it runs,
 // and the builds of the compiler, Embree and rastercheck.
 struct BenchMachine {
   std::string cpu;
@@ -100,8 +109,11 @@ struct BenchMachine {
   std::string widestKernelIsa, fastestEmbreeIsa, compiler, embree, rastercheck;
 };
 BenchMachine benchMachine();
-// One line: "AMD EPYC, 2 logical CPUs (kernels up to avx512, Embree avx512); GCC 12.2.0, ...".
+// One line: "AMD EPYC (...), 2 logical CPUs (kernels up to avx512, Embree avx512); GCC 12.2.0, ...",
+// its hardware and its builds, which the two functions after it give apart.
 std::string describe(const BenchMachine& machine);
+std::string describeHardware(const BenchMachine& machine);  // "AMD EPYC (...), 2 logical CPUs (...)"
+std::string describeBuilds(const BenchMachine& machine);    // "GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0"
 
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine);
 // What benchJson wrote: the rows, and the machine where the file has one (bench wrote none

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -322,17 +323,40 @@ void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& row
   }
 }
 
+// `text`, or it losing its middle a tenth at a time until `fits` holds or 12 characters are left.
+std::string elideUntil(const std::string& text, const std::function<bool(const std::string&)>& fits) {
+  std::string out = text;
+  for (std::size_t keep = text.size(); keep > 12 && !fits(out);) {
+    keep -= std::max<std::size_t>(1, keep / 10);
+    out = chart::elideMiddle(text, keep);
+  }
+  return out;
+}
+
 Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
   Fonts fonts;
   std::vector<std::string> scenes;  // in the order bench ran them
   for (const BenchRow& r : rows) {
     if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
   }
+  // The machine's line, or two where it does not fit (a long CPU name): the hardware, then the
+  // builds, each losing its middle where even that is too long.
+  std::vector<std::string> about;
+  if (machine) {
+    about = {"measured on " + describe(*machine)};
+    if (fonts.width(about[0], 11) > kWidth - 40.0) {
+      about = {"measured on " + describeHardware(*machine), "built with " + describeBuilds(*machine)};
+    }
+    for (std::string& text : about) {
+      text = elideUntil(text, [&](const std::string& t) { return fonts.width(t, 11) <= kWidth - 40.0; });
+    }
+  }
+  const int header = kHeader + 14 * std::max(0, int(about.size()) - 1);
   Drawing d;
   d.width = kWidth;
-  d.height = kHeader + kRowHeight * int(scenes.size()) + kFooter;
+  d.height = header + kRowHeight * int(scenes.size()) + kFooter;
   d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, every setting", 16, kInk});
-  if (machine) d.items.push_back(Text{20, 47, "measured on " + describe(*machine), 11, kGrey});
+  for (std::size_t i = 0; i < about.size(); ++i) d.items.push_back(Text{20, 47 + 14 * double(i), about[i], 11, kGrey});
   std::string defaultName = benchSettingName(Interpolation::kPerspective, Precision::kFloat, 8);
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     std::vector<const BenchRow*> mine;
@@ -343,7 +367,7 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
     for (const BenchRow* r : mine) {
       if (r->isDefault) head = r, defaultName = r->setting;
     }
-    const double top = kHeader + kRowHeight * double(s);
+    const double top = header + kRowHeight * double(s);
     char conditions[512];
     std::snprintf(conditions, sizeof conditions,
                   ": %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
@@ -352,11 +376,8 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
                   head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
                   head->referenceBuildMs);
     // A long scene name (a path) loses its middle rather than the conditions their end.
-    std::string name = head->scene;
-    for (std::size_t keep = name.size(); keep > 12 && fonts.width(name + conditions, 13) > kWidth - 40.0;) {
-      keep -= std::max<std::size_t>(1, keep / 10);
-      name = chart::elideMiddle(head->scene, keep);
-    }
+    const std::string name =
+        elideUntil(head->scene, [&](const std::string& n) { return fonts.width(n + conditions, 13) <= kWidth - 40.0; });
     d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});
     d.items.push_back(Text{20, top + 26, name + conditions, 13, kInk});
     double tMin = INFINITY, tMax = 0;

@@ -89,6 +89,22 @@ TEST(BenchSettings, VariantsTheCommandLineAlreadyRunsAreLeftOut) {
   }
 }
 
+// What bench says it measured on: the first processor's model name, family, model and stepping
+// from /proc/cpuinfo, and the caches, since a virtual machine may name a whole family alike.
+TEST(BenchMachine, TheCpuIsNamedWithItsGenerationAndCaches) {
+  const std::string two = "processor\t: 0\nvendor_id\t: AuthenticAMD\ncpu family\t: 26\nmodel\t\t: 2\n"
+                          "model name\t: AMD EPYC\nstepping\t: 1\nflags\t\t: fpu sse2 avx2\n\n"
+                          "processor\t: 1\ncpu family\t: 25\nmodel\t\t: 17\nmodel name\t: Other\nstepping\t: 0\n\n";
+  const std::vector<rc::app::CpuCache> caches = {{"L1d", "48K"}, {"L2", "1024K"}, {"L3", "32768K"}};
+  EXPECT_EQ(rc::app::cpuDescription(two, caches), "AMD EPYC (family 26, model 2, stepping 1; L1d 48K, L2 1024K, L3 32768K)");
+  EXPECT_EQ(rc::app::cpuDescription(two, {}), "AMD EPYC (family 26, model 2, stepping 1)");
+  // Other architectures name other fields: what is there is said, the rest left out.
+  EXPECT_EQ(rc::app::cpuDescription("processor\t: 0\nBogoMIPS\t: 50.00\nCPU part\t: 0xd0c\n", {{"L2", "1024K"}}),
+            "unknown (L2 1024K)");
+  EXPECT_EQ(rc::app::cpuDescription("", {}), "unknown");
+  EXPECT_EQ(rc::app::cpuDescription("model name\t:\ncpu family\t: 6\nmodel\t\t: 85\n", {}), "unknown (family 6, model 85)");
+}
+
 // The speed-ups count against the reference at its best for each: at 1M triangles the medium
 // build traced faster and the low one took less in all (session 30's figures).
 TEST(BenchReference, EachSpeedupTakesTheBuildThatIsBestForIt) {
@@ -258,6 +274,33 @@ TEST(BenchChart, ALongSceneNameLeavesTheConditionsWhole) {
   ASSERT_NE(line, std::string::npos) << "the name's end, then its conditions";
   EXPECT_NE(svg.find("...", svg.rfind(">", line)), std::string::npos);
   EXPECT_NE(svg.find("BVH build", line), std::string::npos);
+}
+
+// The machine's line under the title: one where it fits, else its hardware and its builds on
+// two, the chart 14 pixels taller, and a CPU name too long even for that loses its middle.
+TEST(BenchChart, TheMachineTakesASecondLineRatherThanRunningOffTheChart) {
+  const auto height = [](const std::string& svg) {
+    const std::size_t at = svg.find("height=\"");
+    return std::stoi(svg.substr(at + 8));
+  };
+  const std::vector<BenchRow> rows = craftedRows();
+  rc::app::BenchMachine machine{"AMD EPYC", 2, "avx512", "avx512", "GCC 12.2.0", "3.13.5", "0.1.0"};
+  const std::string shortSvg = rc::app::benchChartSvg(rows, &machine);
+  EXPECT_NE(shortSvg.find(">measured on AMD EPYC, 2 logical CPUs (kernels up to avx512, Embree avx512); GCC 12.2.0, "
+                          "Embree 3.13.5, rastercheck 0.1.0<"), std::string::npos);
+  machine.cpu = "AMD EPYC (family 26, model 2, stepping 1; L1d 48K, L2 1024K, L3 32768K)";
+  const std::string twoLines = rc::app::benchChartSvg(rows, &machine);
+  EXPECT_NE(twoLines.find(">measured on " + machine.cpu + ", 2 logical CPUs (kernels up to avx512, Embree avx512)<"),
+            std::string::npos) << twoLines.substr(0, 2000);
+  EXPECT_NE(twoLines.find(">built with GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0<"), std::string::npos);
+  EXPECT_EQ(height(twoLines), height(shortSvg) + 14);
+  EXPECT_EQ(height(rc::app::benchChartSvg(rows)), height(shortSvg));
+  machine.cpu = std::string(400, 'c');
+  const std::string elided = rc::app::benchChartSvg(rows, &machine);
+  EXPECT_EQ(elided.find(std::string(200, 'c')), std::string::npos);
+  EXPECT_NE(elided.find("...ccc"), std::string::npos);
+  EXPECT_NE(elided.find(", 2 logical CPUs (kernels up to avx512, Embree avx512)<"), std::string::npos);
+  EXPECT_NE(elided.find(">built with GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0<"), std::string::npos);
 }
 
 TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
