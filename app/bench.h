@@ -101,8 +101,9 @@ struct CpuCache {
 // family, model and stepping tell its generations apart, and the caches say what fits.
 std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCache>& caches);
 
-// What the figures were measured on: the CPU (cpuDescription of this machine), its logical CPUs, the widest kernels and the fastest Embree mode it runs,
-// and the builds of the compiler, Embree and rastercheck.
+// What the figures were measured on: the CPU (cpuDescription of this machine), its logical
+// CPUs, the widest kernels and the fastest Embree mode it runs, and the builds of the
+// compiler, Embree and rastercheck.
 struct BenchMachine {
   std::string cpu;
   int logicalCpus = 0;
