@@ -295,7 +295,8 @@ std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCach
     const auto it = field.find(key);
     return it == field.end() ? std::string() : it->second;
   };
-  std::string cpu = value("model name").empty() ? "unknown" : value("model name");
+  std::string cpu = value("model name");
+  if (cpu.empty()) cpu = "unknown";
   // The model name alone can be a family's (a virtual machine's "AMD EPYC"): the numbers tell
   // its generations apart.
   std::vector<std::string> details;

@@ -343,13 +343,10 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
   // builds, each losing its middle where even that is too long.
   std::vector<std::string> about;
   if (machine) {
+    const auto fits = [&](const std::string& text) { return fonts.width(text, 11) <= kWidth - 40.0; };
     about = {"measured on " + describe(*machine)};
-    if (fonts.width(about[0], 11) > kWidth - 40.0) {
-      about = {"measured on " + describeHardware(*machine), "built with " + describeBuilds(*machine)};
-    }
-    for (std::string& text : about) {
-      text = elideUntil(text, [&](const std::string& t) { return fonts.width(t, 11) <= kWidth - 40.0; });
-    }
+    if (!fits(about[0])) about = {"measured on " + describeHardware(*machine), "built with " + describeBuilds(*machine)};
+    for (std::string& text : about) text = elideUntil(text, fits);
   }
   const int header = kHeader + 14 * std::max(0, int(about.size()) - 1);
   Drawing d;
