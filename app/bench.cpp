@@ -120,6 +120,26 @@ BestReference bestReference(const std::vector<BenchRow::ReferenceBuild>& builds)
   return best;
 }
 
+void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& references) {
+  row.referenceBuilds.clear();
+  for (const ReferenceRuns& r : references) row.referenceBuilds.push_back({r.build, median(r.buildRuns), median(r.traceRuns)});
+  const BestReference best = bestReference(row.referenceBuilds);
+  const BenchRow::ReferenceBuild& fasterTrace = row.referenceBuilds[best.fasterTrace];
+  const BenchRow::ReferenceBuild& smallerSum = row.referenceBuilds[best.smallerSum];
+  row.referenceBuild = fasterTrace.build;
+  row.referenceBuildMs = fasterTrace.buildMs;
+  row.referenceTraceMs = fasterTrace.traceMs;
+  row.speedup = row.referenceTraceMs / row.rasterMs;
+  row.traceRuns = references[best.fasterTrace].traceRuns;
+  for (std::size_t r = 0; r < row.rasterRuns.size(); ++r) {  // each round's trace over its own frame
+    const double ratio = row.traceRuns[r] / row.rasterRuns[r];
+    row.speedupMin = r == 0 ? ratio : std::min(row.speedupMin, ratio);
+    row.speedupMax = r == 0 ? ratio : std::max(row.speedupMax, ratio);
+  }
+  row.speedupWithBuild = (smallerSum.buildMs + smallerSum.traceMs) / row.rasterMs;
+  row.speedupWithBuildQuality = smallerSum.build;
+}
+
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;
@@ -249,25 +269,10 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.diagnostics = setting.raster.diagnostics;
       row.cull = setting.raster.culling == Culling::kNone ? "none" : "auto";
       row.referenceIsa = settings.reference.isa;
-      // The speed-ups count against the reference at its best for each.
-      for (const Built& b : references) row.referenceBuilds.push_back({embreeBuildName(b.options.build), median(b.build), median(b.trace)});
-      const BestReference best = bestReference(row.referenceBuilds);
-      const BenchRow::ReferenceBuild& fasterTrace = row.referenceBuilds[best.fasterTrace];
-      const BenchRow::ReferenceBuild& smallerSum = row.referenceBuilds[best.smallerSum];
-      const std::vector<double>& trace = references[best.fasterTrace].trace;
-      row.referenceBuild = fasterTrace.build;
-      row.referenceBuildMs = fasterTrace.buildMs;
-      row.referenceTraceMs = fasterTrace.traceMs;
-      row.speedup = row.referenceTraceMs / row.rasterMs;
       row.rasterRuns = times;
-      row.traceRuns = trace;
-      for (int r = 0; r < runs; ++r) {  // round r timed trace[r] and times[r]
-        const double ratio = trace[std::size_t(r)] / times[std::size_t(r)];
-        row.speedupMin = r == 0 ? ratio : std::min(row.speedupMin, ratio);
-        row.speedupMax = r == 0 ? ratio : std::max(row.speedupMax, ratio);
-      }
-      row.speedupWithBuild = (smallerSum.buildMs + smallerSum.traceMs) / row.rasterMs;
-      row.speedupWithBuildQuality = smallerSum.build;
+      std::vector<ReferenceRuns> measured;
+      for (const Built& b : references) measured.push_back({embreeBuildName(b.options.build), b.build, b.trace});
+      countAgainstReference(row, measured);
       row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
       row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
       row.baryMax = report.families[0].stats.max;

@@ -126,6 +126,45 @@ TEST(BenchReference, EachSpeedupTakesTheBuildThatIsBestForIt) {
   EXPECT_EQ(tie.smallerSum, 1u);
 }
 
+// A row's speed-ups from the builds' runs: the speed-up against the faster trace's median, the
+// one with the build against the smaller sum's, both over the median frame, and the rounds' own
+// ratios bracketing them. Figures where the two builds differ on purpose: in a real run the same
+// quality can be best for both, and a bench run could not tell them apart (session 42's CI).
+TEST(BenchReference, EachSpeedupCountsTheMediansOfTheBuildBestForIt) {
+  BenchRow row;
+  row.rasterRuns = {12, 10, 8};
+  row.rasterMs = 10;
+  row.rasterMsMin = 8;
+  rc::app::countAgainstReference(row, {{"medium", {150, 156.5, 160}, {60, 53.7, 50}}, {"low", {50, 56.6, 57}, {58.3, 60, 58}}});
+  ASSERT_EQ(row.referenceBuilds.size(), 2u);
+  EXPECT_EQ(row.referenceBuilds[0].build, "medium");
+  EXPECT_DOUBLE_EQ(row.referenceBuilds[0].buildMs, 156.5);
+  EXPECT_DOUBLE_EQ(row.referenceBuilds[0].traceMs, 53.7);
+  EXPECT_EQ(row.referenceBuilds[1].build, "low");
+  EXPECT_DOUBLE_EQ(row.referenceBuilds[1].buildMs, 56.6);
+  EXPECT_DOUBLE_EQ(row.referenceBuilds[1].traceMs, 58.3);
+  EXPECT_EQ(row.referenceBuild, "medium");
+  EXPECT_DOUBLE_EQ(row.referenceBuildMs, 156.5);
+  EXPECT_DOUBLE_EQ(row.referenceTraceMs, 53.7);
+  EXPECT_EQ(row.traceRuns, (std::vector<double>{60, 53.7, 50}));
+  EXPECT_DOUBLE_EQ(row.speedup, 5.37);                     // 53.7 / 10, not / 8
+  EXPECT_DOUBLE_EQ(row.speedupMin, 5.0);                   // 60 / 12
+  EXPECT_DOUBLE_EQ(row.speedupMax, 6.25);                  // 50 / 8
+  EXPECT_EQ(row.speedupWithBuildQuality, "low");
+  EXPECT_DOUBLE_EQ(row.speedupWithBuild, (56.6 + 58.3) / 10);  // not medium's (156.5 + 53.7) / 10
+  // One quality pinned: both speed-ups count against it.
+  BenchRow pinned;
+  pinned.rasterRuns = {4};
+  pinned.rasterMs = pinned.rasterMsMin = 4;
+  rc::app::countAgainstReference(pinned, {{"high", {200}, {50}}});
+  EXPECT_EQ(pinned.referenceBuild, "high");
+  EXPECT_EQ(pinned.speedupWithBuildQuality, "high");
+  EXPECT_DOUBLE_EQ(pinned.speedup, 12.5);
+  EXPECT_DOUBLE_EQ(pinned.speedupMin, 12.5);
+  EXPECT_DOUBLE_EQ(pinned.speedupMax, 12.5);
+  EXPECT_DOUBLE_EQ(pinned.speedupWithBuild, 62.5);
+}
+
 TEST(BenchChart, ParetoFrontKeepsWhatNothingElseBeatsOnBothAxes) {
   // x: time, y: error. (1, 5) and (2, 2) and (4, 0) are the front; (3, 2) is beaten by (2, 2)
   // on time alone; (1, 6) by (1, 5) on error alone; (2, 2) twice: both on the front.
