@@ -11,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "compare/compare.h"
@@ -368,7 +369,69 @@ std::string describeBuilds(const BenchMachine& m) {
 
 std::string describe(const BenchMachine& m) { return describeHardware(m) + "; " + describeBuilds(m); }
 
-std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine) {
+std::optional<CpuTimes> parseProcStat(const std::string& text) {
+  std::istringstream in(text);
+  std::string label;
+  if (!(in >> label) || label != "cpu") return std::nullopt;
+  // user nice system idle iowait irq softirq steal (guest and guest_nice, after them, are
+  // already counted in user and nice); older kernels stop after idle, or before steal.
+  double field[8] = {};
+  int count = 0;
+  while (count < 8 && in >> field[count]) ++count;
+  if (count < 4) return std::nullopt;
+  CpuTimes t;
+  t.busy = field[0] + field[1] + field[2] + field[5] + field[6];
+  t.steal = field[7];
+  for (const double f : field) t.total += f;
+  return t;
+}
+
+BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownTicks) {
+  const double total = after.total - before.total;
+  if (!(total > 0)) return {};
+  // The kernel counts in ticks and this process's own time more finely: clamped.
+  const auto share = [&](double ticks) { return std::clamp(ticks / total, 0.0, 1.0); };
+  return {share(after.busy - before.busy - ownTicks), share(after.steal - before.steal)};
+}
+
+namespace {
+
+std::optional<CpuTimes> readProcStat() {
+  std::ifstream in("/proc/stat");
+  std::string line;
+  if (!std::getline(in, line)) return std::nullopt;
+  return parseProcStat(line);
+}
+
+// This process's CPU time, all its threads, in /proc/stat's ticks.
+double ownTicks() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return (seconds(usage.ru_utime) + seconds(usage.ru_stime)) * double(sysconf(_SC_CLK_TCK));
+}
+
+}  // namespace
+
+LoadMeter::LoadMeter() : start_(readProcStat()), ownStart_(ownTicks()) {}
+
+std::optional<BenchLoad> LoadMeter::load() const {
+  const std::optional<CpuTimes> now = readProcStat();
+  if (!start_ || !now) return std::nullopt;
+  return loadBetween(*start_, *now, ownTicks() - ownStart_);
+}
+
+std::string describe(const BenchLoad& load) {
+  const auto percent = [](double share) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.1f%%", 100 * share);
+    return std::string(text);
+  };
+  return "other processes used " + percent(load.others) + " of the CPUs' time, the hypervisor's other guests " +
+         percent(load.steal) + " (steal)";
+}
+
+std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine, const std::optional<BenchLoad>& load) {
   nlohmann::json list = nlohmann::json::array();
   for (const BenchRow& r : rows) {
     nlohmann::json row = {{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width}, {"height", r.height},
@@ -405,7 +468,10 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                                 {"compiler", machine.compiler},
                                 {"embree", machine.embree},
                                 {"rastercheck", machine.rastercheck}};
-  return jsonDocument(nlohmann::json({{"format_version", 1}, {"machine", about}, {"rows", list}}));
+  nlohmann::json doc = {{"format_version", 1}, {"machine", about}};
+  if (load) doc["load"] = {{"other_processes", load->others}, {"steal", load->steal}};
+  doc["rows"] = list;
+  return jsonDocument(doc);
 }
 
 BenchResults readBenchJson(const std::string& path) {

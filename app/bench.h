@@ -126,7 +126,40 @@ std::string describe(const BenchMachine& machine);
 std::string describeHardware(const BenchMachine& machine);  // "AMD EPYC (...), 2 logical CPUs (...)"
 std::string describeBuilds(const BenchMachine& machine);    // "GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0"
 
-std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine);
+// How busy the machine was with other work while bench ran: the shares of all its CPUs' time
+// that other processes used, and that the hypervisor gave to other guests (steal). Figures
+// taken on a busy machine are slower and noisier than on an idle one; these say so.
+struct BenchLoad {
+  double others = 0, steal = 0;  // 0 to 1
+};
+// The machine's CPU time as the first line of /proc/stat counts it, in its ticks: busy (user,
+// nice, system, irq, softirq), steal, and all of it (idle and iowait too). Nothing where the
+// text has no such line.
+struct CpuTimes {
+  double busy = 0, steal = 0, total = 0;
+};
+std::optional<CpuTimes> parseProcStat(const std::string& text);
+// The load between two readings of /proc/stat, during which this process itself used
+// `ownTicks` of CPU time (which is not the others').
+BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownTicks);
+// Reads /proc/stat and this process's CPU time when made, and the load since when asked;
+// nothing where /proc/stat cannot be read.
+class LoadMeter {
+ public:
+  LoadMeter();
+  std::optional<BenchLoad> load() const;
+
+ private:
+  std::optional<CpuTimes> start_;
+  double ownStart_ = 0;
+};
+// "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
+std::string describe(const BenchLoad& load);
+
+// `load`, where measured, goes in as "load": {"other_processes", "steal"}.
+std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine,
+                      const std::optional<BenchLoad>& load = std::nullopt);
+
 // What benchJson wrote: the rows, and the machine where the file has one (bench wrote none
 // before session 17).
 struct BenchResults {

@@ -58,8 +58,10 @@ int runBenchCommand(BenchArgs& args) {
   // Per scene: the reference's builds, each round of traces and frames, then the errors.
   Progress progress(int(scenes.size()) * (args.runs + 2), args.quiet);
   const BenchMachine machine = benchMachine();
+  const LoadMeter meter;
   const std::vector<BenchRow> rows =
       runBench(scenes, args.settings, args.runs, !args.pinnedBuild, [&](const std::string& what) { progress.step(what); });
+  const std::optional<BenchLoad> load = meter.load();
 
   std::printf("%s, the reference's trace and the settings timed in turn; "
               "raster and trace times exclude EXR writing; %d threads unless the setting says 1;\n"
@@ -73,6 +75,12 @@ int runBenchCommand(BenchArgs& args) {
               args.pinnedBuild ? (std::string(embreeBuildName(args.settings.reference.build)) + " build").c_str()
                                : "its BVH built in medium and in low quality, each timed (--embree-build pins one)");
   std::printf("machine: %s\n", describe(machine).c_str());
+  if (load) {
+    // Beyond this, other work took enough of the cores to slow the figures and spread them.
+    constexpr double kBusy = 0.05;
+    std::printf("load during the run: %s%s\n", describe(*load).c_str(),
+                load->others + load->steal > kBusy ? ": a busy machine, so slower and noisier figures than an idle one gives" : "");
+  }
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
   std::printf("%-*s %-31s %9s %15s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
@@ -106,7 +114,7 @@ int runBenchCommand(BenchArgs& args) {
   // leaves no file of a partial set behind.
   const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
   WrittenOutputs outputs;
-  outputs.writeText(args.json, benchJson(rows, machine));
+  outputs.writeText(args.json, benchJson(rows, machine, load));
   outputs.writeText(args.csv, benchCsv(rows));
   outputs.write(args.chart, [&](const std::string& path) { writeBenchChart(chart, path); });
   outputs.keep();

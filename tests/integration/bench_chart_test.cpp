@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -163,6 +164,41 @@ TEST(BenchReference, EachSpeedupCountsTheMediansOfTheBuildBestForIt) {
   EXPECT_DOUBLE_EQ(pinned.speedupMin, 12.5);
   EXPECT_DOUBLE_EQ(pinned.speedupMax, 12.5);
   EXPECT_DOUBLE_EQ(pinned.speedupWithBuild, 62.5);
+}
+
+// How busy other work kept the machine, from two readings of /proc/stat's first line and this
+// process's own CPU time between them.
+TEST(BenchLoad, OtherWorkIsTheMachinesBusyTimeLessBenchsOwn) {
+  // user nice system idle iowait irq softirq steal guest guest_nice, as Linux 6 writes them.
+  const std::optional<rc::app::CpuTimes> t = rc::app::parseProcStat("cpu  100 2 30 5000 40 5 6 7 50 1\ncpu0 1 2 3 4\n");
+  ASSERT_TRUE(t.has_value());
+  EXPECT_DOUBLE_EQ(t->busy, 100 + 2 + 30 + 5 + 6);  // iowait is idle; guest is already in user
+  EXPECT_DOUBLE_EQ(t->steal, 7);
+  EXPECT_DOUBLE_EQ(t->total, 100 + 2 + 30 + 5000 + 40 + 5 + 6 + 7);
+  // An old kernel's four fields: no steal.
+  const std::optional<rc::app::CpuTimes> old = rc::app::parseProcStat("cpu 10 0 5 85");
+  ASSERT_TRUE(old.has_value());
+  EXPECT_DOUBLE_EQ(old->busy, 15);
+  EXPECT_DOUBLE_EQ(old->steal, 0);
+  EXPECT_DOUBLE_EQ(old->total, 100);
+  for (const char* text : {"", "cpu0 1 2 3 4", "cpu 1 2 3", "intr 5 6 7 8", "cpu x 2 3 4"}) {
+    EXPECT_FALSE(rc::app::parseProcStat(text).has_value()) << text;
+  }
+
+  // 2000 ticks of all CPUs' time passed; the machine was busy for 600 of them, 400 of which
+  // were bench's own; 20 went to other guests.
+  const rc::app::CpuTimes before{1000, 10, 5000}, after{1600, 30, 7000};
+  const rc::app::BenchLoad load = rc::app::loadBetween(before, after, 400);
+  EXPECT_DOUBLE_EQ(load.others, 0.1);
+  EXPECT_DOUBLE_EQ(load.steal, 0.01);
+  EXPECT_EQ(rc::app::describe(load), "other processes used 10.0% of the CPUs' time, the hypervisor's other guests 1.0% (steal)");
+  // Bench's own time, measured more finely than the kernel's ticks, can pass the busy time a
+  // little: no negative share.
+  EXPECT_DOUBLE_EQ(rc::app::loadBetween(before, after, 603).others, 0.0);
+  // No time passed: nothing to share.
+  const rc::app::BenchLoad none = rc::app::loadBetween(before, before, 0);
+  EXPECT_DOUBLE_EQ(none.others, 0.0);
+  EXPECT_DOUBLE_EQ(none.steal, 0.0);
 }
 
 TEST(BenchChart, ParetoFrontKeepsWhatNothingElseBeatsOnBothAxes) {
