@@ -321,17 +321,19 @@ std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCach
 namespace {
 
 // The data and unified caches of CPU 0 as sysfs lists them, by level: "L1d", "L2", "L3".
+// A file's first line; empty where it cannot be read (a kernel file absent on this machine).
+std::string firstLine(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string text;
+  std::getline(in, text);
+  return text;
+}
+
 std::vector<CpuCache> cpu0Caches() {
   std::vector<CpuCache> caches;
-  const auto read = [](const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::string text;
-    std::getline(in, text);
-    return text;
-  };
   for (int index = 0;; ++index) {
     const std::filesystem::path dir = "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(index);
-    const std::string level = read(dir / "level"), type = read(dir / "type"), size = read(dir / "size");
+    const std::string level = firstLine(dir / "level"), type = firstLine(dir / "type"), size = firstLine(dir / "size");
     if (level.empty()) break;
     if (type == "Instruction" || size.empty()) continue;
     caches.push_back({"L" + level + (type == "Data" ? "d" : ""), size});
@@ -396,13 +398,6 @@ BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownT
 
 namespace {
 
-std::optional<CpuTimes> readProcStat() {
-  std::ifstream in("/proc/stat");
-  std::string line;
-  if (!std::getline(in, line)) return std::nullopt;
-  return parseProcStat(line);
-}
-
 // This process's CPU time, all its threads, in /proc/stat's ticks.
 double ownTicks() {
   rusage usage{};
@@ -413,10 +408,10 @@ double ownTicks() {
 
 }  // namespace
 
-LoadMeter::LoadMeter() : start_(readProcStat()), ownStart_(ownTicks()) {}
+LoadMeter::LoadMeter() : start_(parseProcStat(firstLine("/proc/stat"))), ownStart_(ownTicks()) {}
 
 std::optional<BenchLoad> LoadMeter::load() const {
-  const std::optional<CpuTimes> now = readProcStat();
+  const std::optional<CpuTimes> now = parseProcStat(firstLine("/proc/stat"));
   if (!start_ || !now) return std::nullopt;
   return loadBetween(*start_, *now, ownTicks() - ownStart_);
 }

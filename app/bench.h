@@ -82,14 +82,15 @@ struct BestReference {
 };
 BestReference bestReference(const std::vector<BenchRow::ReferenceBuild>& builds);
 
-// Fills a row's reference figures (referenceBuilds, referenceBuild and its times, traceRuns)
-// and its speed-ups, each against the reference at its best for it (bestReference), from every
-// build quality measured and its times of each round: round r traced traceRuns[r] beside the
-// row's rasterRuns[r]. The row's rasterMs and rasterRuns must be set.
+// A build quality of the reference as measured: its build and trace times of each round.
 struct ReferenceRuns {
   std::string build;  // embreeBuildName
   std::vector<double> buildRuns, traceRuns;
 };
+// Fills a row's reference figures (referenceBuilds, referenceBuild and its times, traceRuns)
+// and its speed-ups, each against the reference at its best for it (bestReference), from every
+// build quality measured: round r traced traceRuns[r] beside the row's rasterRuns[r]. The
+// row's rasterMs and rasterRuns must be set.
 void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& references);
 
 // How the times were taken, for the table and the chart: "medians of 7 runs", or "one run".
