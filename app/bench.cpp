@@ -426,6 +426,11 @@ std::string describe(const BenchLoad& load) {
          percent(load.steal) + " (steal)";
 }
 
+std::string busyNote(const BenchLoad& load) {
+  constexpr double kBusy = 0.05;
+  return load.others + load.steal > kBusy ? "a busy machine, so slower and noisier figures than an idle one gives" : "";
+}
+
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine, const std::optional<BenchLoad>& load) {
   nlohmann::json list = nlohmann::json::array();
   for (const BenchRow& r : rows) {
@@ -520,7 +525,7 @@ BenchResults readBenchJson(const std::string& path) {
     }
   }
   if (rows.empty()) throw badInput(path + ": /rows", "no rows");
-  BenchResults results{rows, std::nullopt};
+  BenchResults results{rows, std::nullopt, std::nullopt};
   if (doc.contains("machine")) {
     const nlohmann::json& j = doc["machine"];
     try {
@@ -536,6 +541,18 @@ BenchResults readBenchJson(const std::string& path) {
     } catch (const nlohmann::json::exception& e) {
       throw badInput(path + ": /machine", std::string("missing or mistyped field: ") + e.what());
     }
+  }
+  if (doc.contains("load")) {
+    const nlohmann::json& j = doc["load"];
+    // A share of the CPUs' time, as loadBetween gives it.
+    const auto share = [&](const char* field) {
+      const std::string at = path + ": /load/" + field;
+      if (!j.is_object() || !j.contains(field) || !j[field].is_number()) throw badInput(at, "missing, or not a number");
+      const double value = j[field].get<double>();
+      if (!(value >= 0 && value <= 1)) throw badInput(at, "is " + formatNumber(value) + "; must be a share from 0 to 1");
+      return value;
+    };
+    results.load = BenchLoad{share("other_processes"), share("steal")};
   }
   return results;
 }

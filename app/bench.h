@@ -156,18 +156,25 @@ class LoadMeter {
 };
 // "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
 std::string describe(const BenchLoad& load);
+// Where other work and steal took more than 5% of the CPUs' time, enough to slow the figures
+// and spread them: "a busy machine, so slower and noisier figures than an idle one gives";
+// else nothing.
+std::string busyNote(const BenchLoad& load);
 
 // `load`, where measured, goes in as "load": {"other_processes", "steal"}.
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine,
                       const std::optional<BenchLoad>& load = std::nullopt);
 
-// What benchJson wrote: the rows, and the machine where the file has one (bench wrote none
-// before session 17).
+// What benchJson wrote: the rows, the machine where the file has one (bench wrote none before
+// session 17), and the load where it has one (none before session 43, or where bench could not
+// read /proc/stat).
 struct BenchResults {
   std::vector<BenchRow> rows;
   std::optional<BenchMachine> machine;
+  std::optional<BenchLoad> load;
 };
-// Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer.
+// Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer
+// (a load share outside 0 to 1 too).
 BenchResults readBenchJson(const std::string& path);
 std::string benchCsv(const std::vector<BenchRow>& rows);
 

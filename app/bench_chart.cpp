@@ -333,20 +333,24 @@ std::string elideUntil(const std::string& text, const std::function<bool(const s
   return out;
 }
 
-Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
+Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load) {
   Fonts fonts;
   std::vector<std::string> scenes;  // in the order bench ran them
   for (const BenchRow& r : rows) {
     if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
   }
   // The machine's line, or two where it does not fit (a long CPU name): the hardware, then the
-  // builds, each losing its middle where even that is too long.
+  // builds, each losing its middle where even that is too long. Then the load's.
   std::vector<std::string> about;
+  const auto fits = [&](const std::string& text) { return fonts.width(text, 11) <= kWidth - 40.0; };
   if (machine) {
-    const auto fits = [&](const std::string& text) { return fonts.width(text, 11) <= kWidth - 40.0; };
     about = {"measured on " + describe(*machine)};
     if (!fits(about[0])) about = {"measured on " + describeHardware(*machine), "built with " + describeBuilds(*machine)};
     for (std::string& text : about) text = elideUntil(text, fits);
+  }
+  if (load) {
+    about.push_back("load during the run: " + describe(*load));
+    if (const std::string note = busyNote(*load); !note.empty()) about.push_back(note);
   }
   const int header = kHeader + 14 * std::max(0, int(about.size()) - 1);
   Drawing d;
@@ -532,22 +536,23 @@ void checkChartCanBeMade(const std::string& path) {
   Fonts().at(kLabelSize);
 }
 
-std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
-  return toSvg(layOut(rows, machine));
+std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load) {
+  return toSvg(layOut(rows, machine, load));
 }
 
-Rgb8Image benchChartImage(const std::vector<BenchRow>& rows, const BenchMachine* machine) {
+Rgb8Image benchChartImage(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load) {
   Fonts fonts;
-  return toImage(layOut(rows, machine), fonts);
+  return toImage(layOut(rows, machine, load), fonts);
 }
 
-BenchChart makeBenchChart(const std::vector<BenchRow>& rows, const BenchMachine* machine, const std::string& path) {
+BenchChart makeBenchChart(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load,
+                          const std::string& path) {
   BenchChart chart;
   chart.format = chartFormatOf(path);
   if (chart.format == ChartFormat::kSvg) {
-    chart.svg = benchChartSvg(rows, machine);
+    chart.svg = benchChartSvg(rows, machine, load);
   } else {
-    chart.image = benchChartImage(rows, machine);
+    chart.image = benchChartImage(rows, machine, load);
   }
   return chart;
 }

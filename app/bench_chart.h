@@ -23,9 +23,12 @@ ChartFormat chartFormatOf(const std::string& path);
 // it where it cannot be), so that bench fails before its minutes of measuring, not after.
 void checkChartCanBeMade(const std::string& path);
 
-// `machine`, where given, is named under the title.
-std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine = nullptr);
-Rgb8Image benchChartImage(const std::vector<BenchRow>& rows, const BenchMachine* machine = nullptr);
+// `machine` and `load`, where given, are named under the title, with busyNote's words on a line
+// of their own where the load calls the machine busy.
+std::string benchChartSvg(const std::vector<BenchRow>& rows, const BenchMachine* machine = nullptr,
+                          const BenchLoad* load = nullptr);
+Rgb8Image benchChartImage(const std::vector<BenchRow>& rows, const BenchMachine* machine = nullptr,
+                          const BenchLoad* load = nullptr);
 
 // The chart in the format its path asks for, ready to write: the SVG text or the PNG image.
 struct BenchChart {
@@ -33,7 +36,8 @@ struct BenchChart {
   std::string svg;
   Rgb8Image image;
 };
-BenchChart makeBenchChart(const std::vector<BenchRow>& rows, const BenchMachine* machine, const std::string& path);
+BenchChart makeBenchChart(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load,
+                          const std::string& path);
 // Writes it through a temporary file renamed into place; throws ioError.
 void writeBenchChart(const BenchChart& chart, const std::string& path);
 

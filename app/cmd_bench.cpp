@@ -76,10 +76,8 @@ int runBenchCommand(BenchArgs& args) {
                                : "its BVH built in medium and in low quality, each timed (--embree-build pins one)");
   std::printf("machine: %s\n", describe(machine).c_str());
   if (load) {
-    // Beyond this, other work took enough of the cores to slow the figures and spread them.
-    constexpr double kBusy = 0.05;
-    std::printf("load during the run: %s%s\n", describe(*load).c_str(),
-                load->others + load->steal > kBusy ? ": a busy machine, so slower and noisier figures than an idle one gives" : "");
+    const std::string note = busyNote(*load);
+    std::printf("load during the run: %s%s\n", describe(*load).c_str(), note.empty() ? "" : (": " + note).c_str());
   }
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
@@ -112,7 +110,7 @@ int runBenchCommand(BenchArgs& args) {
               "  --json adds stage times\n");
   // Everything is made before anything is written, so that a failure (the chart's font, say)
   // leaves no file of a partial set behind.
-  const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, args.chart);
+  const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, load ? &*load : nullptr, args.chart);
   WrittenOutputs outputs;
   outputs.writeText(args.json, benchJson(rows, machine, load));
   outputs.writeText(args.csv, benchCsv(rows));

@@ -124,7 +124,8 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
 
 void benchSection(std::ostringstream& html, const std::string& dir, const BenchResults& bench) {
   const std::vector<BenchRow>& rows = bench.rows;
-  writeTextFile((std::filesystem::path(dir) / "bench.svg").string(), benchChartSvg(rows, bench.machine ? &*bench.machine : nullptr));
+  writeTextFile((std::filesystem::path(dir) / "bench.svg").string(),
+                benchChartSvg(rows, bench.machine ? &*bench.machine : nullptr, bench.load ? &*bench.load : nullptr));
   html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
        << "<p>From bench results: medians over runs in one process; floor ms is the time to write the setting's "
        << "output planes alone (memory's floor under raster ms); per round is the least and greatest of each "
@@ -132,6 +133,11 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
        << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
        << "dashed lines and ringed dots mark each panel's Pareto front.</p>\n";
   if (bench.machine) html << "<p class=\"settings\">Measured on: " << escapeMarkup(describe(*bench.machine)) << "</p>\n";
+  if (bench.load) {
+    const std::string note = busyNote(*bench.load);
+    html << "<p class=\"settings\">Load during the run: " << escapeMarkup(describe(*bench.load))
+         << (note.empty() ? "" : ": <strong>" + escapeMarkup(note) + "</strong>") << "</p>\n";
+  }
   html << "<figure class=\"chart\"><a href=\"bench.svg\"><img src=\"bench.svg\" alt=\"frame time against error\"></a>"
        << "<figcaption>click the chart to open it at full size</figcaption></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"

@@ -7,7 +7,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     const rc::app::BenchResults results = rc::app::readBenchJson(rc::fuzz::writeInput("bench.json", data, size));
-    rc::app::benchChartSvg(results.rows, results.machine ? &*results.machine : nullptr);
+    rc::app::benchChartSvg(results.rows, results.machine ? &*results.machine : nullptr,
+                           results.load ? &*results.load : nullptr);
   } catch (const rc::Error&) {
   }
   return 0;

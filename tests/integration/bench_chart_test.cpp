@@ -378,6 +378,38 @@ TEST(BenchChart, TheMachineTakesASecondLineRatherThanRunningOffTheChart) {
   EXPECT_NE(elided.find(">built with GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0<"), std::string::npos);
 }
 
+// The load's line under the machine's, and busyNote's words on one more where the machine was
+// busy: each line 14 pixels more of chart.
+TEST(BenchChart, TheLoadIsNamedUnderTheMachineAndABusyMachineSaysSo) {
+  const auto height = [](const std::string& svg) { return std::stoi(svg.substr(svg.find("height=\"") + 8)); };
+  const std::vector<BenchRow> rows = craftedRows();
+  const rc::app::BenchMachine machine{"AMD EPYC", 2, "avx512", "avx512", "GCC 12.2.0", "3.13.5", "0.1.0"};
+  const std::string bare = rc::app::benchChartSvg(rows, &machine);
+  const rc::app::BenchLoad idle{0.004, 0.0};
+  const std::string quiet = rc::app::benchChartSvg(rows, &machine, &idle);
+  // (The apostrophes escaped, as all text of the SVG.)
+  EXPECT_NE(quiet.find(">load during the run: other processes used 0.4% of the CPUs&#39; time, the hypervisor&#39;s "
+                       "other guests 0.0% (steal)<"),
+            std::string::npos);
+  EXPECT_EQ(quiet.find("a busy machine"), std::string::npos);
+  EXPECT_EQ(height(quiet), height(bare) + 14);
+  EXPECT_LT(quiet.find(">measured on "), quiet.find(">load during the run: "));
+  // 4% of others and 2% of steal: busy, though neither alone passes 5%.
+  const rc::app::BenchLoad busy{0.04, 0.02};
+  const std::string loud = rc::app::benchChartSvg(rows, &machine, &busy);
+  EXPECT_NE(loud.find(">load during the run: other processes used 4.0% of the CPUs&#39; time, the hypervisor&#39;s "
+                      "other guests 2.0% (steal)<"),
+            std::string::npos);
+  EXPECT_NE(loud.find(">a busy machine, so slower and noisier figures than an idle one gives<"), std::string::npos);
+  EXPECT_EQ(height(loud), height(bare) + 28);
+  // Without a machine (an old file, say) the load stands alone.
+  const std::string alone = rc::app::benchChartSvg(rows, nullptr, &idle);
+  EXPECT_EQ(alone.find(">measured on "), std::string::npos);
+  EXPECT_NE(alone.find(">load during the run: "), std::string::npos);
+  EXPECT_EQ(rc::app::busyNote(rc::app::BenchLoad{0.05, 0.0}), "");
+  EXPECT_NE(rc::app::busyNote(rc::app::BenchLoad{0.0, 0.051}), "");
+}
+
 TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
   const std::string svg = rc::app::benchChartSvg(craftedRows());
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
@@ -438,6 +470,7 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
   }
   ASSERT_TRUE(back.machine.has_value());
   EXPECT_EQ(back.machine->cpu, "test cpu");
+  EXPECT_FALSE(back.load.has_value()) << "bench could not read /proc/stat: no load";
   struct Case {
     const char* field;
     const char* value;  // JSON text
@@ -455,5 +488,34 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
     const std::string bad = temp.write("bad.json", text);
     rc::testing::expectError([&] { rc::app::readBenchJson(bad); }, rc::ExitCode::kBadInput,
                              {bad + ": /rows/1/" + c.field + ": is "}, std::string(c.field) + " = " + c.value);
+  }
+}
+
+// The load bench measured comes back; a share outside 0 to 1, or one missing or not a number, is
+// refused naming the file and the field.
+TEST(BenchJson, ReadsTheLoadBackAndRefusesAShareOutsideZeroToOne) {
+  const rc::testing::TempDir temp;
+  const std::vector<BenchRow> rows = craftedRows();
+  const rc::app::BenchMachine machine{"test cpu", 2, "avx2", "avx2", "GCC 12", "3.13.5", "0.1"};
+  const std::string text = rc::app::benchJson(rows, machine, rc::app::BenchLoad{0.125, 0.0625});
+  const rc::app::BenchResults back = rc::app::readBenchJson(temp.write("good.json", text));
+  ASSERT_TRUE(back.load.has_value());
+  EXPECT_EQ(back.load->others, 0.125);
+  EXPECT_EQ(back.load->steal, 0.0625);
+  struct Case {
+    const char* from;
+    const char* to;
+    const char* where;
+  };
+  for (const Case c : {Case{"\"steal\": 0.0625", "\"steal\": 1.5", "/load/steal: is 1.5"},
+                       Case{"\"other_processes\": 0.125", "\"other_processes\": -0.01", "/load/other_processes: is -0.01"},
+                       Case{"\"other_processes\": 0.125", "\"other_processes\": \"12%\"", "/load/other_processes: missing"},
+                       Case{"\"steal\": 0.0625", "\"stolen\": 0.0625", "/load/steal: missing"}}) {
+    std::string bad = text;
+    const std::size_t at = bad.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    bad.replace(at, std::string(c.from).size(), c.to);
+    const std::string path = temp.write("bad.json", bad);
+    rc::testing::expectError([&] { rc::app::readBenchJson(path); }, rc::ExitCode::kBadInput, {path + ": " + c.where}, c.to);
   }
 }

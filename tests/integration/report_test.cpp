@@ -92,6 +92,11 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   const nlohmann::json bench = nlohmann::json::parse(std::ifstream(fs::path(out).parent_path() / "bench.json"));
   const std::string cpu = bench["machine"]["cpu"];
   EXPECT_NE(html.find("Measured on: " + cpu + ", "), std::string::npos);
+  // And how busy other work kept the machine, as bench measured it.
+  ASSERT_TRUE(bench.contains("load"));
+  const rc::app::BenchLoad load{bench["load"]["other_processes"], bench["load"]["steal"]};
+  EXPECT_NE(html.find("<p class=\"settings\">Load during the run: " + rc::app::escapeMarkup(rc::app::describe(load))),
+            std::string::npos);
   // The bench rows carry their memory floor, read back from the JSON (older reports show "-").
   EXPECT_NE(html.find("<th>floor ms</th>"), std::string::npos);
   // The chart is drawn across the page and opens at full size.
@@ -167,6 +172,33 @@ TEST(HtmlReport, ShowsEachScenesVerdictReasonsAndFiguresInTheirPlaces) {
   EXPECT_NE(rc::testing::readFile(fs::path(dir.file("two")) / "index.html")
                 .find("<span class=\"pass\">PASS</span> all 2 scenes pass the gate</p>"),
             std::string::npos);
+}
+
+// Bench results taken on a busy machine say so in the report, in words that stand out; an idle
+// machine's load is shown without them.
+TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
+  rc::testing::TempDir dir;
+  rc::app::BenchRow row;
+  row.scene = "cube";
+  row.setting = "perspective-float-8bit";
+  row.isDefault = true;
+  row.triangles = 12;
+  row.width = 64, row.height = 48, row.threads = 2;
+  row.rasterMs = 0.5, row.referenceTraceMs = 2, row.speedup = 4;
+  for (const bool busy : {true, false}) {
+    const std::string out = dir.file(busy ? "busy" : "idle");
+    fs::create_directories(out);
+    const rc::app::BenchLoad load{busy ? 0.379 : 0.004, 0.0};
+    rc::app::writeHtmlReport(out, {madeUpScene("a", true)}, "settings", rc::app::BenchResults{{row}, std::nullopt, load});
+    const std::string html = rc::testing::readFile(fs::path(out) / "index.html");
+    const std::string line = "<p class=\"settings\">Load during the run: other processes used " +
+                             std::string(busy ? "37.9" : "0.4") + "% of the CPUs&#39; time, the hypervisor&#39;s other guests 0.0% (steal)";
+    EXPECT_NE(html.find(line + (busy ? ": <strong>a busy machine, so slower and noisier figures than an idle one "
+                                       "gives</strong></p>"
+                                     : "</p>")),
+              std::string::npos)
+        << html;
+  }
 }
 
 TEST(HtmlReport, LoadsInChromiumWithoutConsoleErrorsAndShowsItsImages) {
