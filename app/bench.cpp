@@ -109,6 +109,26 @@ std::vector<BenchSetting> benchSettings(const RasterOptions& base) {
   return settings;
 }
 
+std::vector<BenchSetting> pickSettings(const std::vector<BenchSetting>& sweep, const std::vector<std::string>& names) {
+  if (names.empty()) return sweep;
+  const auto named = [&](const BenchSetting& s) {
+    return std::find(names.begin(), names.end(), s.name) != names.end() ||
+           (s.isDefault && std::find(names.begin(), names.end(), "default") != names.end());
+  };
+  for (const std::string& name : names) {
+    if (name == "default" ||
+        std::any_of(sweep.begin(), sweep.end(), [&](const BenchSetting& s) { return s.name == name; })) {
+      continue;
+    }
+    std::string known = "default";
+    for (const BenchSetting& s : sweep) known += ", " + s.name;
+    throw usageError("--settings: no setting is named '" + name + "'; with these options bench has " + known);
+  }
+  std::vector<BenchSetting> picked;
+  std::copy_if(sweep.begin(), sweep.end(), std::back_inserter(picked), named);
+  return picked;
+}
+
 std::string timingPhrase(int runs) { return runs == 1 ? "one run" : "medians of " + std::to_string(runs) + " runs"; }
 
 BestReference bestReference(const std::vector<BenchRow::ReferenceBuild>& builds) {
@@ -141,7 +161,8 @@ void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& refe
   row.speedupWithBuildQuality = smallerSum.build;
 }
 
-std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings,
+                               const std::vector<BenchSetting>& sweep, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;
   for (const Scene& scene : scenes) {
@@ -194,7 +215,6 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       Framebuffer* raster;
       std::vector<double> times, transform, setup, bin, tiles;
     };
-    const std::vector<BenchSetting> sweep = benchSettings(settings.raster);
     std::vector<Live> live(sweep.size());
     Framebuffer withDiagnostics, withoutDiagnostics;
     for (std::size_t i = 0; i < sweep.size(); ++i) {

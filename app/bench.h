@@ -27,6 +27,10 @@ struct BenchSetting {
 std::vector<BenchSetting> benchSettings(const RasterOptions& base);
 // "perspective-float-8bit", "affine-double-nosnap", ...: a sweep row's name before its suffix.
 std::string benchSettingName(Interpolation mode, Precision precision, int subpixelBits);
+// The settings of `sweep` that `names` names (by the names bench's rows give them, or "default"
+// for the default's), in the sweep's order; every one where `names` is empty. A name that no
+// setting has is a usage error naming it and listing the names there are.
+std::vector<BenchSetting> pickSettings(const std::vector<BenchSetting>& sweep, const std::vector<std::string>& names);
 
 struct BenchRow {
   std::string scene, setting;
@@ -99,7 +103,9 @@ std::string timingPhrase(int runs);
 // `step` is called before each measured unit of work (progress).
 // The reference is built and traced with settings.reference; with `alsoLowBuild` (and another
 // quality there) the low-quality build is timed and traced beside it, for speedupWithBuild.
-std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings, int runs, bool alsoLowBuild,
+// The rasterizer runs each setting of `sweep` (benchSettings, or those pickSettings chose).
+std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings,
+                               const std::vector<BenchSetting>& sweep, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step);
 
 // A cache of a CPU: "L1d", "L2", "L3", and its size as sysfs writes it ("1024K").

@@ -356,7 +356,7 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, c
   Drawing d;
   d.width = kWidth;
   d.height = header + kRowHeight * int(scenes.size()) + kFooter;
-  d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, every setting", 16, kInk});
+  d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, per setting", 16, kInk});
   for (std::size_t i = 0; i < about.size(); ++i) d.items.push_back(Text{20, 47 + 14 * double(i), about[i], 11, kGrey});
   std::string defaultName = benchSettingName(Interpolation::kPerspective, Precision::kFloat, 8);
   for (std::size_t s = 0; s < scenes.size(); ++s) {

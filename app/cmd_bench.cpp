@@ -22,6 +22,7 @@ namespace {
 struct BenchArgs {
   std::vector<std::string> scenes;
   std::string json, csv, chart;
+  std::vector<std::string> only;  // --settings
   int runs = 5;
   bool quiet = false;
   bool pinnedIsa = false;    // --embree-isa given
@@ -35,6 +36,7 @@ int runBenchCommand(BenchArgs& args) {
     throw usageError(std::string("bench times the top-left fill rule; --fill-rule ") +
                      fillRuleName(args.settings.raster.fillRule) + " is wrong on purpose, for check to fail");
   }
+  const std::vector<BenchSetting> sweep = pickSettings(benchSettings(args.settings.raster), args.only);
   // Speed-ups count against Embree's fastest mode here unless an ISA is pinned: the default
   // pin (for outputs that do not change with the CPU) is not always the fastest.
   if (!args.pinnedIsa) args.settings.reference.isa = fastestEmbreeIsa();
@@ -60,7 +62,7 @@ int runBenchCommand(BenchArgs& args) {
   const BenchMachine machine = benchMachine();
   const LoadMeter meter;
   const std::vector<BenchRow> rows =
-      runBench(scenes, args.settings, args.runs, !args.pinnedBuild, [&](const std::string& what) { progress.step(what); });
+      runBench(scenes, args.settings, sweep, args.runs, !args.pinnedBuild, [&](const std::string& what) { progress.step(what); });
   const std::optional<BenchLoad> load = meter.load();
 
   std::printf("%s, the reference's trace and the settings timed in turn; "
@@ -131,6 +133,10 @@ void registerBench(CLI::App& root, Action& action) {
   command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md; '-': standard output, and the table to stderr)");
   command->add_option("--csv", args->csv, "write the rows as CSV ('-': standard output, and the table to stderr)");
   command->add_option("--chart", args->chart, "write frame time against error as a chart: FILE.svg or FILE.png");
+  command->add_option("--settings", args->only,
+                      "time only these settings, by their names in the table (default: the default setting's), "
+                      "in the table's order; default: every one")
+      ->delimiter(',');
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   command->get_option("--embree-isa")

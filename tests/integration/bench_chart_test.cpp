@@ -90,6 +90,38 @@ TEST(BenchSettings, VariantsTheCommandLineAlreadyRunsAreLeftOut) {
   }
 }
 
+// --settings: the named settings in the sweep's order whatever order they are named in,
+// "default" for the default's, each once; a name the sweep lacks (here the one-thread row where
+// every row runs on one thread) is refused with the names there are.
+TEST(BenchSettings, PickSettingsKeepsTheNamedInTheSweepsOrder) {
+  const std::vector<rc::app::BenchSetting> sweep = rc::app::benchSettings(rc::RasterOptions{});
+  const auto names = [](const std::vector<rc::app::BenchSetting>& settings) {
+    std::vector<std::string> out;
+    for (const rc::app::BenchSetting& s : settings) out.push_back(s.name);
+    return out;
+  };
+  EXPECT_EQ(names(rc::app::pickSettings(sweep, {})), names(sweep));
+  const std::vector<rc::app::BenchSetting> picked =
+      rc::app::pickSettings(sweep, {"perspective-float-4bit", "default", "affine-float-8bit", "default"});
+  EXPECT_EQ(names(picked),
+            (std::vector<std::string>{"perspective-float-8bit", "affine-float-8bit", "perspective-float-4bit"}));
+  ASSERT_EQ(picked.size(), 3u);
+  EXPECT_TRUE(picked[0].isDefault);
+  EXPECT_EQ(picked[1].raster.interpolation, rc::Interpolation::kAffine);
+  EXPECT_EQ(picked[2].raster.subpixelBits, 4);
+  EXPECT_EQ(names(rc::app::pickSettings(sweep, {"perspective-float-8bit"})), names(rc::app::pickSettings(sweep, {"default"})));
+  rc::testing::expectError([&] { rc::app::pickSettings(sweep, {"default", "perspective-float-3bit"}); },
+                           rc::ExitCode::kUsage,
+                           {"--settings: no setting is named 'perspective-float-3bit'; with these options bench has "
+                            "default, perspective-float-8bit, affine-float-8bit, "},
+                           "a 3-bit setting");
+  rc::RasterOptions oneThread;
+  oneThread.threads = 1;
+  rc::testing::expectError(
+      [&] { rc::app::pickSettings(rc::app::benchSettings(oneThread), {"perspective-float-8bit-1thread"}); },
+      rc::ExitCode::kUsage, {"no setting is named 'perspective-float-8bit-1thread'"}, "the one-thread row on one thread");
+}
+
 // What bench says it measured on: the first processor's model name, family, model and stepping
 // from /proc/cpuinfo, and the caches, since a virtual machine may name a whole family alike.
 TEST(BenchMachine, TheCpuIsNamedWithItsGenerationAndCaches) {

@@ -392,6 +392,29 @@ TEST(Cli, BenchChartIsWrittenInTheFormatItsNameAsks) {
 
 // bench times the settings in rounds, every setting once per round, and says so as it goes:
 // progress counts the reference, each round and the errors, and reaches its total.
+// --settings times those alone; a name bench has no setting of is a usage error before anything
+// is measured or written.
+TEST(Cli, BenchTimesOnlyTheSettingsNamed) {
+  const rc::testing::TempDir temp;
+  const fs::path json = temp.path() / "b.json";
+  const CliRun r = run("bench cube --runs 1 -q --settings perspective-float-4bit,default --json " + json.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json rows = nlohmann::json::parse(std::ifstream(json)).at("rows");
+  ASSERT_EQ(rows.size(), 2u) << rows;
+  EXPECT_EQ(rows[0]["setting"], "perspective-float-8bit");
+  EXPECT_EQ(rows[0]["default"], true);
+  EXPECT_EQ(rows[1]["setting"], "perspective-float-4bit");
+  EXPECT_EQ(rows[1]["default"], false);
+  const fs::path none = temp.path() / "none.json";
+  const CliRun bad = run("bench cube --runs 1 -q --settings perspective-float-5bit --json " + none.string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--settings: no setting is named 'perspective-float-5bit'; with these options bench has "
+                            "default, perspective-float-8bit, "),
+            std::string::npos)
+      << bad.output;
+  EXPECT_FALSE(fs::exists(none));
+}
+
 TEST(Cli, BenchTimesTheSettingsRoundByRound) {
   const CliRun r = run("bench cube --runs 3");
   ASSERT_EQ(r.exitCode, 0) << r.output;
