@@ -166,6 +166,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
                                const std::function<void(const std::string&)>& step) {
   std::vector<BenchRow> rows;
   for (const Scene& scene : scenes) {
+    const LoadMeter meter;
+    const std::size_t firstRow = rows.size();
     // Steady-state frames: each renderer keeps its framebuffer (and the rasterizer its working
     // memory) from one run to the next, as a renderer drawing frame after frame does; one
     // untimed frame first faults the memory in. Neither timing includes the RGB preview.
@@ -301,6 +303,8 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.disagreementFraction = report.disagreementFraction;
       rows.push_back(row);
     }
+    const std::optional<BenchLoad> load = meter.load();
+    for (std::size_t i = firstRow; i < rows.size(); ++i) rows[i].load = load;
   }
   return rows;
 }
@@ -470,6 +474,7 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
                           {"disagreement_fraction", r.disagreementFraction}};
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
+    if (r.load) row["load"] = {{"other_processes", r.load->others}, {"steal", r.load->steal}};
     nlohmann::json builds = nlohmann::json::array();
     for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
       builds.push_back({{"build", b.build}, {"build_ms", b.buildMs}, {"trace_ms", b.traceMs}});
@@ -595,11 +600,16 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
          "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max,reference_build,"
          "reference_low_build_ms,reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
-         "speedup_with_build_quality\n";
+         "speedup_with_build_quality,load_other_processes,load_steal\n";
   char line[768];  // every field after the scene: numbers and short names
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.4g", r.exrWriteMs);
+    char load[2][32] = {};  // other processes, steal; empty where not measured
+    if (r.load) {
+      std::snprintf(load[0], sizeof load[0], "%.4g", r.load->others);
+      std::snprintf(load[1], sizeof load[1], "%.4g", r.load->steal);
+    }
     char builds[2][2][32] = {};  // low, medium: build, trace; empty where not measured
     for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
       const int k = b.build == "low" ? 0 : b.build == "medium" ? 1 : -1;
@@ -609,14 +619,15 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
     }
     std::snprintf(line, sizeof line,
                   ",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s,%s\n",
                   r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
                   r.speedupWithBuild, r.trianglesPerSecond, r.pixelsPerSecond, r.baryMax, r.baryP999,
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
                   r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax, r.referenceBuild.c_str(),
-                  builds[0][0], builds[0][1], builds[1][0], builds[1][1], r.speedupWithBuildQuality.c_str());
+                  builds[0][0], builds[0][1], builds[1][0], builds[1][1], r.speedupWithBuildQuality.c_str(), load[0],
+                  load[1]);
     out << csvQuoted(r.scene) << line;
   }
   return out.str();

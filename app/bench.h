@@ -32,6 +32,40 @@ std::string benchSettingName(Interpolation mode, Precision precision, int subpix
 // setting has is a usage error naming it and listing the names there are.
 std::vector<BenchSetting> pickSettings(const std::vector<BenchSetting>& sweep, const std::vector<std::string>& names);
 
+// How busy the machine was with other work while bench ran: the shares of all its CPUs' time
+// that other processes used, and that the hypervisor gave to other guests (steal). Figures
+// taken on a busy machine are slower and noisier than on an idle one; these say so.
+struct BenchLoad {
+  double others = 0, steal = 0;  // 0 to 1
+};
+// The machine's CPU time as the first line of /proc/stat counts it, in its ticks: busy (user,
+// nice, system, irq, softirq), steal, and all of it (idle and iowait too). Nothing where the
+// text has no such line.
+struct CpuTimes {
+  double busy = 0, steal = 0, total = 0;
+};
+std::optional<CpuTimes> parseProcStat(const std::string& text);
+// The load between two readings of /proc/stat, during which this process itself used
+// `ownTicks` of CPU time (which is not the others').
+BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownTicks);
+// Reads /proc/stat and this process's CPU time when made, and the load since when asked;
+// nothing where /proc/stat cannot be read.
+class LoadMeter {
+ public:
+  LoadMeter();
+  std::optional<BenchLoad> load() const;
+
+ private:
+  std::optional<CpuTimes> start_;
+  double ownStart_ = 0;
+};
+// "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
+std::string describe(const BenchLoad& load);
+// Where other work and steal took more than 5% of the CPUs' time, enough to slow the figures
+// and spread them: "a busy machine, so slower and noisier figures than an idle one gives";
+// else nothing.
+std::string busyNote(const BenchLoad& load);
+
 struct BenchRow {
   std::string scene, setting;
   bool isDefault = false;
@@ -77,6 +111,10 @@ struct BenchRow {
   std::string speedupWithBuildQuality;
   double trianglesPerSecond = 0, pixelsPerSecond = 0;
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
+  // How busy other work kept the machine while this row's scene was measured (its builds,
+  // rounds, errors and EXR writes; every row of a scene has the same); none where /proc/stat
+  // cannot be read. readBenchJson leaves it out.
+  std::optional<BenchLoad> load;
 };
 
 // Which of the reference's builds each speed-up counts against: the one that traced faster
@@ -132,40 +170,6 @@ BenchMachine benchMachine();
 std::string describe(const BenchMachine& machine);
 std::string describeHardware(const BenchMachine& machine);  // "AMD EPYC (...), 2 logical CPUs (...)"
 std::string describeBuilds(const BenchMachine& machine);    // "GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0"
-
-// How busy the machine was with other work while bench ran: the shares of all its CPUs' time
-// that other processes used, and that the hypervisor gave to other guests (steal). Figures
-// taken on a busy machine are slower and noisier than on an idle one; these say so.
-struct BenchLoad {
-  double others = 0, steal = 0;  // 0 to 1
-};
-// The machine's CPU time as the first line of /proc/stat counts it, in its ticks: busy (user,
-// nice, system, irq, softirq), steal, and all of it (idle and iowait too). Nothing where the
-// text has no such line.
-struct CpuTimes {
-  double busy = 0, steal = 0, total = 0;
-};
-std::optional<CpuTimes> parseProcStat(const std::string& text);
-// The load between two readings of /proc/stat, during which this process itself used
-// `ownTicks` of CPU time (which is not the others').
-BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownTicks);
-// Reads /proc/stat and this process's CPU time when made, and the load since when asked;
-// nothing where /proc/stat cannot be read.
-class LoadMeter {
- public:
-  LoadMeter();
-  std::optional<BenchLoad> load() const;
-
- private:
-  std::optional<CpuTimes> start_;
-  double ownStart_ = 0;
-};
-// "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
-std::string describe(const BenchLoad& load);
-// Where other work and steal took more than 5% of the CPUs' time, enough to slow the figures
-// and spread them: "a busy machine, so slower and noisier figures than an idle one gives";
-// else nothing.
-std::string busyNote(const BenchLoad& load);
 
 // `load`, where measured, goes in as "load": {"other_processes", "steal"}.
 std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine,

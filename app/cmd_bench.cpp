@@ -77,9 +77,16 @@ int runBenchCommand(BenchArgs& args) {
               args.pinnedBuild ? (std::string(embreeBuildName(args.settings.reference.build)) + " build").c_str()
                                : "its BVH built in medium and in low quality, each timed (--embree-build pins one)");
   std::printf("machine: %s\n", describe(machine).c_str());
-  if (load) {
-    const std::string note = busyNote(*load);
-    std::printf("load during the run: %s%s\n", describe(*load).c_str(), note.empty() ? "" : (": " + note).c_str());
+  const auto printLoad = [](const std::string& during, const BenchLoad& l) {
+    const std::string note = busyNote(l);
+    std::printf("%s: %s%s\n", during.c_str(), describe(l).c_str(), note.empty() ? "" : (": " + note).c_str());
+  };
+  if (load) printLoad("load during the run", *load);
+  // And each scene that other work made busy, where there are several: a burst in one scene's
+  // runs is spread thin over the whole run.
+  for (std::size_t i = 0; i < rows.size() && scenes.size() > 1; ++i) {
+    const bool first = i == 0 || rows[i].scene != rows[i - 1].scene;
+    if (first && rows[i].load && !busyNote(*rows[i].load).empty()) printLoad("  during " + rows[i].scene, *rows[i].load);
   }
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));

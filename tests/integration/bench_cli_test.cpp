@@ -147,10 +147,10 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     if (lines == 0) {
       EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max,reference_build,reference_low_build_ms,"
                                  "reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
-                                 "speedup_with_build_quality")) << line;
+                                 "speedup_with_build_quality,load_other_processes,load_steal")) << line;
     }
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 37) << "38 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 39) << "40 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
@@ -270,18 +270,30 @@ TEST(Cli, BenchSaysHowBusyOtherWorkKeptTheMachine) {
       while (!stop.load(std::memory_order_relaxed)) spins = spins + 1;
     });
   }
-  const CliRun busy = run("bench blob:tris=20000 --size 640x360 --runs 3 -q --json " + json.string());
+  const CliRun busy = run("bench blob:tris=20000 cube --size 640x360 --runs 3 -q --json " + json.string());
   stop = true;
   for (std::thread& t : spinners) t.join();
   ASSERT_EQ(busy.exitCode, 0) << busy.output;
-  const nlohmann::json load = nlohmann::json::parse(std::ifstream(json)).at("load");
-  const double others = load.at("other_processes").get<double>(), steal = load.at("steal").get<double>();
-  EXPECT_GT(others, 0.2) << load;
-  EXPECT_LE(others, 1.0) << load;
-  EXPECT_GE(steal, 0.0) << load;
-  EXPECT_LE(steal, 1.0) << load;
-  EXPECT_NE(busy.output.find("load during the run: other processes used "), std::string::npos) << busy.output;
-  EXPECT_NE(busy.output.find("a busy machine, so slower and noisier figures"), std::string::npos) << busy.output;
+  const nlohmann::json doc = nlohmann::json::parse(std::ifstream(json));
+  // The whole run's load, and each row's, over its scene's measuring.
+  std::vector<nlohmann::json> loads = {doc.at("load")};
+  for (const nlohmann::json& row : doc.at("rows")) loads.push_back(row.at("load"));
+  ASSERT_GT(loads.size(), 2u);
+  for (const nlohmann::json& load : loads) {
+    const double others = load.at("other_processes").get<double>(), steal = load.at("steal").get<double>();
+    EXPECT_GT(others, 0.2) << load;
+    EXPECT_LE(others, 1.0) << load;
+    EXPECT_GE(steal, 0.0) << load;
+    EXPECT_LE(steal, 1.0) << load;
+  }
+  // A line for the whole run, and one for each scene, since there are two; each says busy.
+  for (const std::string start : {"\nload during the run: other processes used ",
+                                  "\n  during blob:tris=20000: other processes used ", "\n  during cube: other processes used "}) {
+    const std::size_t at = busy.output.find(start);
+    ASSERT_NE(at, std::string::npos) << start << "\n" << busy.output;
+    const std::string line = busy.output.substr(at + 1, busy.output.find('\n', at + 1) - at - 1);
+    EXPECT_TRUE(line.ends_with(": a busy machine, so slower and noisier figures than an idle one gives")) << line;
+  }
 }
 
 // bench's error columns are compare's figures for the same frames: its default, affine and
@@ -405,6 +417,7 @@ TEST(Cli, BenchTimesOnlyTheSettingsNamed) {
   EXPECT_EQ(rows[0]["default"], true);
   EXPECT_EQ(rows[1]["setting"], "perspective-float-4bit");
   EXPECT_EQ(rows[1]["default"], false);
+  EXPECT_EQ(r.output.find("\n  during "), std::string::npos) << "one scene: its load is the run's";
   const fs::path none = temp.path() / "none.json";
   const CliRun bad = run("bench cube --runs 1 -q --settings perspective-float-5bit --json " + none.string());
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
@@ -429,7 +442,7 @@ TEST(Cli, BenchTimesTheSettingsRoundByRound) {
 }
 
 // bench --csv: a scene whose path holds a comma and quotes, and is longer than any fixed line
-// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 32 columns.
+// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 40 columns.
 TEST(Cli, BenchCsvQuotesAnySceneName) {
   const rc::testing::TempDir temp;
   fs::path dir = temp.path();
@@ -463,7 +476,7 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
     }
   }
   EXPECT_FALSE(quoted) << line;
-  ASSERT_EQ(fields.size(), 38u) << line;
+  ASSERT_EQ(fields.size(), 40u) << line;
   EXPECT_EQ(fields[0], obj.string());
   EXPECT_EQ(fields[1], "1");  // triangles
 }
