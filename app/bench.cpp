@@ -440,14 +440,15 @@ std::optional<BenchLoad> LoadMeter::load() const {
   return loadBetween(*start_, *now, ownTicks() - ownStart_);
 }
 
+std::string percentOf(double share) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100 * share);
+  return text;
+}
+
 std::string describe(const BenchLoad& load) {
-  const auto percent = [](double share) {
-    char text[16];
-    std::snprintf(text, sizeof text, "%.1f%%", 100 * share);
-    return std::string(text);
-  };
-  return "other processes used " + percent(load.others) + " of the CPUs' time, the hypervisor's other guests " +
-         percent(load.steal) + " (steal)";
+  return "other processes used " + percentOf(load.others) + " of the CPUs' time, the hypervisor's other guests " +
+         percentOf(load.steal) + " (steal)";
 }
 
 std::string busyNote(const BenchLoad& load) {
@@ -499,6 +500,26 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
   return jsonDocument(doc);
 }
 
+namespace {
+
+// A load as benchJson writes it, at `at` (the file and the JSON pointer): each share a number
+// from 0 to 1, as loadBetween gives it.
+BenchLoad readLoad(const nlohmann::json& j, const std::string& at) {
+  const auto share = [&](const char* field) {
+    if (!j.is_object() || !j.contains(field) || !j[field].is_number()) {
+      throw badInput(at + "/" + field, "missing, or not a number");
+    }
+    const double value = j[field].get<double>();
+    if (!(value >= 0 && value <= 1)) {
+      throw badInput(at + "/" + field, "is " + formatNumber(value) + "; must be a share from 0 to 1");
+    }
+    return value;
+  };
+  return {share("other_processes"), share("steal")};
+}
+
+}  // namespace
+
 BenchResults readBenchJson(const std::string& path) {
   const nlohmann::json doc = readJsonFile(path, "bench results");
   if (!doc.is_object() || doc.value("format_version", 0) != 1 || !doc.contains("rows") || !doc["rows"].is_array()) {
@@ -536,6 +557,7 @@ BenchResults readBenchJson(const std::string& path) {
       r.baryMax = j.at("bary_max_error").get<double>();
       r.baryP999 = j.at("bary_p999_error").get<double>();
       r.disagreementFraction = j.at("disagreement_fraction").get<double>();
+      if (j.contains("load")) r.load = readLoad(j["load"], at + "/load");
       // The chart places these on log axes (an error of 0 on a row of its own).
       const auto finite = [&](const char* field, double value, bool positive) {
         if (std::isfinite(value) && (positive ? value > 0 : value >= 0)) return;
@@ -567,18 +589,7 @@ BenchResults readBenchJson(const std::string& path) {
       throw badInput(path + ": /machine", std::string("missing or mistyped field: ") + e.what());
     }
   }
-  if (doc.contains("load")) {
-    const nlohmann::json& j = doc["load"];
-    // A share of the CPUs' time, as loadBetween gives it.
-    const auto share = [&](const char* field) {
-      const std::string at = path + ": /load/" + field;
-      if (!j.is_object() || !j.contains(field) || !j[field].is_number()) throw badInput(at, "missing, or not a number");
-      const double value = j[field].get<double>();
-      if (!(value >= 0 && value <= 1)) throw badInput(at, "is " + formatNumber(value) + "; must be a share from 0 to 1");
-      return value;
-    };
-    results.load = BenchLoad{share("other_processes"), share("steal")};
-  }
+  if (doc.contains("load")) results.load = readLoad(doc["load"], path + ": /load");
   return results;
 }
 

@@ -61,6 +61,7 @@ class LoadMeter {
 };
 // "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
 std::string describe(const BenchLoad& load);
+std::string percentOf(double share);  // 0.004: "0.4%"
 // Where other work and steal took more than 5% of the CPUs' time, enough to slow the figures
 // and spread them: "a busy machine, so slower and noisier figures than an idle one gives";
 // else nothing.
@@ -113,7 +114,7 @@ struct BenchRow {
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
   // How busy other work kept the machine while this row's scene was measured (its builds,
   // rounds, errors and EXR writes; every row of a scene has the same); none where /proc/stat
-  // cannot be read. readBenchJson leaves it out.
+  // cannot be read, and in files from before session 44.
   std::optional<BenchLoad> load;
 };
 
@@ -183,8 +184,8 @@ struct BenchResults {
   std::optional<BenchMachine> machine;
   std::optional<BenchLoad> load;
 };
-// Reads what benchJson wrote; throws ioError / badInput naming the file and the JSON pointer
-// (a load share outside 0 to 1 too).
+// Reads what benchJson wrote, the rows' loads too; throws ioError / badInput naming the file
+// and the JSON pointer (a load share outside 0 to 1 too).
 BenchResults readBenchJson(const std::string& path);
 std::string benchCsv(const std::vector<BenchRow>& rows);
 

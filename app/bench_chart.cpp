@@ -369,13 +369,18 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, c
       if (r->isDefault) head = r, defaultName = r->setting;
     }
     const double top = header + kRowHeight * double(s);
-    char conditions[512];
-    std::snprintf(conditions, sizeof conditions,
+    char facts[512];
+    std::snprintf(facts, sizeof facts,
                   ": %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
                   withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
                   head->runs > 0 ? (", " + timingPhrase(head->runs)).c_str() : "",
                   head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
                   head->referenceBuildMs);
+    std::string conditions = facts;
+    // A scene that other work made busy says so, with the share it took (bench's rows carry it).
+    if (head->load && !busyNote(*head->load).empty()) {
+      conditions += "; busy: other work " + percentOf(head->load->others + head->load->steal);
+    }
     // A long scene name (a path) loses its middle rather than the conditions their end.
     const std::string name =
         elideUntil(head->scene, [&](const std::string& n) { return fonts.width(n + conditions, 13) <= kWidth - 40.0; });

@@ -122,6 +122,14 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
   html << "</table>\n</section>\n";
 }
 
+// The share of the CPUs' time that other work (other processes and steal) took while the row's
+// scene was measured, in bold where that made the machine busy; "-" where not measured.
+std::string otherWork(const BenchRow& r) {
+  if (!r.load) return "-";
+  const std::string share = percentOf(r.load->others + r.load->steal);
+  return busyNote(*r.load).empty() ? share : "<strong>" + share + "</strong>";
+}
+
 void benchSection(std::ostringstream& html, const std::string& dir, const BenchResults& bench) {
   const std::vector<BenchRow>& rows = bench.rows;
   writeTextFile((std::filesystem::path(dir) / "bench.svg").string(),
@@ -131,7 +139,9 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
        << "output planes alone (memory's floor under raster ms); per round is the least and greatest of each "
        << "round's reference trace over the same round's frame. The chart sets each scene's frame times against "
        << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
-       << "dashed lines and ringed dots mark each panel's Pareto front.</p>\n";
+       << "dashed lines and ringed dots mark each panel's Pareto front; other work is the share of the CPUs' "
+       << "time that other processes and the hypervisor's other guests took while the row's scene was measured, "
+       << "in bold where that made the machine busy.</p>\n";
   if (bench.machine) html << "<p class=\"settings\">Measured on: " << escapeMarkup(describe(*bench.machine)) << "</p>\n";
   if (bench.load) {
     const std::string note = busyNote(*bench.load);
@@ -141,7 +151,8 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
   html << "<figure class=\"chart\"><a href=\"bench.svg\"><img src=\"bench.svg\" alt=\"frame time against error\"></a>"
        << "<figcaption>click the chart to open it at full size</figcaption></figure>\n<table>\n"
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
-       << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th></tr>\n";
+       << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th>"
+       << "<th>other work</th></tr>\n";
   for (const BenchRow& r : rows) {
     html << "<tr><td>" << escapeMarkup(r.scene) << "</td><td>" << escapeMarkup(r.setting) << (r.isDefault ? " (default)" : "")
          << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>"
@@ -149,7 +160,7 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
          << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
          << (r.speedupMax > 0 ? formatNumber(r.speedupMin) + " to " + formatNumber(r.speedupMax) : std::string("-"))
          << "</td><td>" << formatNumber(r.baryMax) << "</td><td>" << formatNumber(r.baryP999) << "</td><td>"
-         << formatNumber(r.disagreementFraction) << "</td></tr>\n";
+         << formatNumber(r.disagreementFraction) << "</td><td>" << otherWork(r) << "</td></tr>\n";
   }
   html << "</table>\n</section>\n";
 }

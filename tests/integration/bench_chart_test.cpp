@@ -440,6 +440,15 @@ TEST(BenchChart, TheLoadIsNamedUnderTheMachineAndABusyMachineSaysSo) {
   EXPECT_NE(alone.find(">load during the run: "), std::string::npos);
   EXPECT_EQ(rc::app::busyNote(rc::app::BenchLoad{0.05, 0.0}), "");
   EXPECT_NE(rc::app::busyNote(rc::app::BenchLoad{0.0, 0.051}), "");
+  // A scene whose own rows say other work made it busy says so on its line; an idle one does not.
+  std::vector<BenchRow> scenes = craftedRows();
+  for (BenchRow& row : scenes) row.load = row.scene == "floor" ? rc::app::BenchLoad{0.195, 0.01} : idle;
+  const std::string perScene = rc::app::benchChartSvg(scenes, &machine, &idle);
+  EXPECT_EQ(occurrences(perScene, "; busy: other work "), 1);
+  const std::size_t at = perScene.find(">floor: ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string floorLine = perScene.substr(at + 1, perScene.find('<', at) - at - 1);
+  EXPECT_TRUE(floorLine.ends_with(" ms; busy: other work 20.5%")) << floorLine;
 }
 
 TEST(BenchChart, SvgShowsEveryRowInBothPanelsLabelledWithItsConditions) {
@@ -529,11 +538,22 @@ TEST(BenchJson, ReadsTheLoadBackAndRefusesAShareOutsideZeroToOne) {
   const rc::testing::TempDir temp;
   const std::vector<BenchRow> rows = craftedRows();
   const rc::app::BenchMachine machine{"test cpu", 2, "avx2", "avx2", "GCC 12", "3.13.5", "0.1"};
-  const std::string text = rc::app::benchJson(rows, machine, rc::app::BenchLoad{0.125, 0.0625});
+  std::vector<BenchRow> loaded = rows;
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    if (i != 2) loaded[i].load = rc::app::BenchLoad{0.25 + 0.125 * double(i), 0.03125};  // row 2 without one
+  }
+  const std::string text = rc::app::benchJson(loaded, machine, rc::app::BenchLoad{0.125, 0.0625});
   const rc::app::BenchResults back = rc::app::readBenchJson(temp.write("good.json", text));
   ASSERT_TRUE(back.load.has_value());
   EXPECT_EQ(back.load->others, 0.125);
   EXPECT_EQ(back.load->steal, 0.0625);
+  ASSERT_EQ(back.rows.size(), loaded.size());
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    ASSERT_EQ(back.rows[i].load.has_value(), i != 2) << i;
+    if (i == 2) continue;
+    EXPECT_EQ(back.rows[i].load->others, loaded[i].load->others) << i;
+    EXPECT_EQ(back.rows[i].load->steal, 0.03125) << i;
+  }
   struct Case {
     const char* from;
     const char* to;
@@ -542,7 +562,8 @@ TEST(BenchJson, ReadsTheLoadBackAndRefusesAShareOutsideZeroToOne) {
   for (const Case c : {Case{"\"steal\": 0.0625", "\"steal\": 1.5", "/load/steal: is 1.5"},
                        Case{"\"other_processes\": 0.125", "\"other_processes\": -0.01", "/load/other_processes: is -0.01"},
                        Case{"\"other_processes\": 0.125", "\"other_processes\": \"12%\"", "/load/other_processes: missing"},
-                       Case{"\"steal\": 0.0625", "\"stolen\": 0.0625", "/load/steal: missing"}}) {
+                       Case{"\"steal\": 0.0625", "\"stolen\": 0.0625", "/load/steal: missing"},
+                       Case{"\"other_processes\": 0.375", "\"other_processes\": 2", "/rows/1/load/other_processes: is 2"}}) {
     std::string bad = text;
     const std::size_t at = bad.find(c.from);
     ASSERT_NE(at, std::string::npos) << c.from;

@@ -191,6 +191,8 @@ TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
     const std::string out = dir.file(busy ? "busy" : "idle");
     fs::create_directories(out);
     const rc::app::BenchLoad load{busy ? 0.379 : 0.004, 0.0};
+    // The row's own load (its scene's), other processes' and steal's shares together.
+    row.load = rc::app::BenchLoad{busy ? 0.30 : 0.002, busy ? 0.05 : 0.001};
     rc::app::writeHtmlReport(out, {madeUpScene("a", true)}, "settings", rc::app::BenchResults{{row}, std::nullopt, load});
     const std::string html = rc::testing::readFile(fs::path(out) / "index.html");
     const std::string line = "<p class=\"settings\">Load during the run: other processes used " +
@@ -199,6 +201,9 @@ TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
                                        "gives</strong></p>"
                                      : "</p>")),
               std::string::npos)
+        << html;
+    EXPECT_NE(html.find("<th>disagreement</th><th>other work</th></tr>"), std::string::npos);
+    EXPECT_NE(html.find(busy ? "</td><td><strong>35.0%</strong></td></tr>" : "</td><td>0.3%</td></tr>"), std::string::npos)
         << html;
   }
 }
