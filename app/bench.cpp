@@ -161,6 +161,22 @@ void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& refe
   row.speedupWithBuildQuality = smallerSum.build;
 }
 
+void countAgainstDefault(std::vector<BenchRow>& rows, std::size_t first) {
+  const auto isDefault = [](const BenchRow& r) { return r.isDefault; };
+  const auto found = std::find_if(rows.begin() + std::ptrdiff_t(first), rows.end(), isDefault);
+  if (found == rows.end()) return;
+  const BenchRow def = *found;
+  for (std::size_t i = first; i < rows.size(); ++i) {
+    BenchRow& row = rows[i];
+    row.overDefault = row.rasterMs / def.rasterMs;
+    for (std::size_t r = 0; r < row.rasterRuns.size(); ++r) {  // each round's frame over the default's
+      const double ratio = row.rasterRuns[r] / def.rasterRuns[r];
+      row.overDefaultMin = r == 0 ? ratio : std::min(row.overDefaultMin, ratio);
+      row.overDefaultMax = r == 0 ? ratio : std::max(row.overDefaultMax, ratio);
+    }
+  }
+}
+
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings,
                                const std::vector<BenchSetting>& sweep, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step) {
@@ -303,6 +319,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       row.disagreementFraction = report.disagreementFraction;
       rows.push_back(row);
     }
+    countAgainstDefault(rows, firstRow);
     const std::optional<BenchLoad> load = meter.load();
     for (std::size_t i = firstRow; i < rows.size(); ++i) rows[i].load = load;
   }
@@ -476,6 +493,11 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"disagreement_fraction", r.disagreementFraction}};
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
     if (r.load) row["load"] = {{"other_processes", r.load->others}, {"steal", r.load->steal}};
+    if (r.overDefault > 0) {
+      row["raster_over_default"] = r.overDefault;
+      row["raster_over_default_min"] = r.overDefaultMin;
+      row["raster_over_default_max"] = r.overDefaultMax;
+    }
     nlohmann::json builds = nlohmann::json::array();
     for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
       builds.push_back({{"build", b.build}, {"build_ms", b.buildMs}, {"trace_ms", b.traceMs}});
@@ -552,6 +574,9 @@ BenchResults readBenchJson(const std::string& path) {
       r.speedup = j.at("speedup").get<double>();
       r.speedupMin = j.value("speedup_min", 0.0);
       r.speedupMax = j.value("speedup_max", 0.0);
+      r.overDefault = j.value("raster_over_default", 0.0);
+      r.overDefaultMin = j.value("raster_over_default_min", 0.0);
+      r.overDefaultMax = j.value("raster_over_default_max", 0.0);
       r.rasterRuns = j.value("raster_ms_runs", std::vector<double>{});
       r.traceRuns = j.value("reference_trace_ms_runs", std::vector<double>{});
       r.baryMax = j.at("bary_max_error").get<double>();
@@ -611,7 +636,8 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
          "triangles_per_second,pixels_per_second,bary_max_error,bary_p999_error,disagreement_fraction,exr_write_ms,"
          "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max,reference_build,"
          "reference_low_build_ms,reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
-         "speedup_with_build_quality,load_other_processes,load_steal\n";
+         "speedup_with_build_quality,load_other_processes,load_steal,raster_over_default,raster_over_default_min,"
+         "raster_over_default_max\n";
   char line[768];  // every field after the scene: numbers and short names
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
@@ -620,6 +646,12 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
     if (r.load) {
       std::snprintf(load[0], sizeof load[0], "%.4g", r.load->others);
       std::snprintf(load[1], sizeof load[1], "%.4g", r.load->steal);
+    }
+    char overDefault[3][32] = {};  // the median's ratio, the least and the greatest round's; empty where none
+    if (r.overDefault > 0) {
+      std::snprintf(overDefault[0], sizeof overDefault[0], "%.4g", r.overDefault);
+      std::snprintf(overDefault[1], sizeof overDefault[1], "%.4g", r.overDefaultMin);
+      std::snprintf(overDefault[2], sizeof overDefault[2], "%.4g", r.overDefaultMax);
     }
     char builds[2][2][32] = {};  // low, medium: build, trace; empty where not measured
     for (const BenchRow::ReferenceBuild& b : r.referenceBuilds) {
@@ -630,7 +662,7 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
     }
     std::snprintf(line, sizeof line,
                   ",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n",
                   r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
@@ -638,7 +670,7 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
                   r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax, r.referenceBuild.c_str(),
                   builds[0][0], builds[0][1], builds[1][0], builds[1][1], r.speedupWithBuildQuality.c_str(), load[0],
-                  load[1]);
+                  load[1], overDefault[0], overDefault[1], overDefault[2]);
     out << csvQuoted(r.scene) << line;
   }
   return out.str();

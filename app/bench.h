@@ -104,6 +104,14 @@ struct BenchRow {
   // round's frame, taken within about a second of each other. How far a slow spell moved the
   // ratio; with an odd number of runs they bracket `speedup`. 0 where not measured (older reports).
   double speedupMin = 0, speedupMax = 0;
+  // This row's frame over its scene's default setting's: the medians' ratio (rasterMs over the
+  // default row's), and the least and the greatest of the rounds' own (each round's frame over
+  // the default's frame of the same round, taken within about a second of each other). What
+  // the setting costs against the default: the one-thread row's says what the second thread
+  // buys, the affine row's what perspective correction costs. 1 for the default itself; 0
+  // where the scene has no default row (--settings without it) and in files from before
+  // session 45.
+  double overDefault = 0, overDefaultMin = 0, overDefaultMax = 0;
   // Every timed frame and trace, in round order (round r: rasterRuns[r], traceRuns[r]).
   std::vector<double> rasterRuns, traceRuns;
   // (build + trace) / raster, with the build quality whose sum is the smaller (the reference at
@@ -135,6 +143,10 @@ struct ReferenceRuns {
 // build quality measured: round r traced traceRuns[r] beside the row's rasterRuns[r]. The
 // row's rasterMs and rasterRuns must be set.
 void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& references);
+
+// Fills overDefault and its bounds in rows[first] onwards, one scene's rows, against the default
+// among them; leaves them 0 where none is the default. Their rasterMs and rasterRuns must be set.
+void countAgainstDefault(std::vector<BenchRow>& rows, std::size_t first);
 
 // How the times were taken, for the table and the chart: "medians of 7 runs", or "one run".
 std::string timingPhrase(int runs);

@@ -90,8 +90,8 @@ int runBenchCommand(BenchArgs& args) {
   }
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
-  std::printf("%-*s %-31s %9s %15s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
-              "raster ms", "(min..max)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
+  std::printf("%-*s %-31s %9s %15s %21s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
+              "raster ms", "(min..max)", "x default (per round)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
               "(per round)", "w/build", "bary max", "bary p999", "disagree", "exr ms");
   for (const BenchRow& r : rows) {
     char spread[32], exr[16] = "-";
@@ -101,15 +101,21 @@ int runBenchCommand(BenchArgs& args) {
     if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.1f", r.exrWriteMs);
     char rounds[48];
     std::snprintf(rounds, sizeof rounds, "(%.2f..%.2f)", r.speedupMin, r.speedupMax);
+    char overDefault[64] = "-";  // the default's own row, and a scene without one
+    if (r.overDefault > 0 && !r.isDefault) {
+      std::snprintf(overDefault, sizeof overDefault, "%.2f (%.2f..%.2f)", r.overDefault, r.overDefaultMin, r.overDefaultMax);
+    }
     char median[32];
     std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
-    std::printf("%-*s %-31s %9s %15s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth, r.scene.c_str(),
-                (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread,
+    std::printf("%-*s %-31s %9s %15s %21s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth,
+                r.scene.c_str(), (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread, overDefault,
                 formatNumber(r.trianglesPerSecond * 1e-6).c_str(), r.pixelsPerSecond * 1e-6, r.storeFloorMs, r.referenceBuildMs,
                 r.referenceTraceMs, r.speedup, rounds, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),
                 formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
   }
-  std::printf("* default setting; Mtri/s, Mpix/s = millions of triangles, of pixels rendered a second (at the median);\n"
+  std::printf("* default setting; x default = raster / the default's raster (medians), and per round the least and\n"
+              "  greatest of each round's frame / the default's frame (--json: raster_over_default);\n"
+              "  Mtri/s, Mpix/s = millions of triangles, of pixels rendered a second (at the median);\n"
               "  speedup = reference trace / raster (medians), with the build quality that traced faster (ref build,\n"
               "  ref trace: its times; --json: reference_build); per round = the least and greatest of each round's\n"
               "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster, with the\n"

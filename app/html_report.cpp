@@ -130,6 +130,13 @@ std::string otherWork(const BenchRow& r) {
   return busyNote(*r.load).empty() ? share : "<strong>" + share + "</strong>";
 }
 
+// The row's frame over its scene's default's: "1.99 (1.91 to 2.10)", the medians' ratio and each
+// round's least and greatest; "-" for the default's own row and where it was not measured.
+std::string overDefault(const BenchRow& r) {
+  if (r.isDefault || !(r.overDefault > 0)) return "-";
+  return formatNumber(r.overDefault) + " (" + formatNumber(r.overDefaultMin) + " to " + formatNumber(r.overDefaultMax) + ")";
+}
+
 void benchSection(std::ostringstream& html, const std::string& dir, const BenchResults& bench) {
   const std::vector<BenchRow>& rows = bench.rows;
   writeTextFile((std::filesystem::path(dir) / "bench.svg").string(),
@@ -137,7 +144,9 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
   html << "<section class=\"scene\">\n<h2>Speed against error</h2>\n"
        << "<p>From bench results: medians over runs in one process; floor ms is the time to write the setting's "
        << "output planes alone (memory's floor under raster ms); per round is the least and greatest of each "
-       << "round's reference trace over the same round's frame. The chart sets each scene's frame times against "
+       << "round's reference trace over the same round's frame; x default is the row's frame over its scene's "
+       << "default's (medians; in brackets each round's least and greatest, a round's two frames taken within "
+       << "about a second of each other). The chart sets each scene's frame times against "
        << "the p99.9 barycentric error and against the fraction of pixels in disagreement with the reference; "
        << "dashed lines and ringed dots mark each panel's Pareto front; other work is the share of the CPUs' "
        << "time that other processes and the hypervisor's other guests took while the row's scene was measured, "
@@ -150,12 +159,13 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
   }
   html << "<figure class=\"chart\"><a href=\"bench.svg\"><img src=\"bench.svg\" alt=\"frame time against error\"></a>"
        << "<figcaption>click the chart to open it at full size</figcaption></figure>\n<table>\n"
-       << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>floor ms</th><th>reference trace ms</th>"
+       << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>x default</th><th>floor ms</th>"
+       << "<th>reference trace ms</th>"
        << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th>"
        << "<th>other work</th></tr>\n";
   for (const BenchRow& r : rows) {
     html << "<tr><td>" << escapeMarkup(r.scene) << "</td><td>" << escapeMarkup(r.setting) << (r.isDefault ? " (default)" : "")
-         << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>"
+         << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>" << overDefault(r) << "</td><td>"
          << (r.storeFloorMs > 0 ? formatNumber(r.storeFloorMs) : std::string("-")) << "</td><td>"
          << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
          << (r.speedupMax > 0 ? formatNumber(r.speedupMin) + " to " + formatNumber(r.speedupMax) : std::string("-"))

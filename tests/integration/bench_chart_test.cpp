@@ -198,6 +198,43 @@ TEST(BenchReference, EachSpeedupCountsTheMediansOfTheBuildBestForIt) {
   EXPECT_DOUBLE_EQ(pinned.speedupWithBuild, 62.5);
 }
 
+// Each row's frame over its scene's default's: the medians' ratio, and the rounds' own ratios
+// (a round's frame over the default's frame of the same round, not over the default's median).
+// The rows from `first` on are one scene's; those before it are left alone, and a scene without
+// a default row gets no ratio.
+TEST(BenchDefault, EachRowCountsAgainstItsScenesDefaultRoundByRound) {
+  BenchRow earlier, affine, def, oneThread, lone;
+  earlier.rasterMs = 7;  // another scene's row, before `first`
+  affine.rasterRuns = {9, 22, 11};
+  affine.rasterMs = 11;
+  def.isDefault = true;
+  def.rasterRuns = {10, 20, 10};
+  def.rasterMs = 10;
+  oneThread.rasterRuns = {20, 30, 40};
+  oneThread.rasterMs = 30;
+  std::vector<BenchRow> rows = {earlier, affine, def, oneThread};
+  rc::app::countAgainstDefault(rows, 1);
+  EXPECT_EQ(rows[0].overDefault, 0.0) << "another scene's row";
+  EXPECT_DOUBLE_EQ(rows[1].overDefault, 1.1);     // 11 / 10: the default comes after it
+  EXPECT_DOUBLE_EQ(rows[1].overDefaultMin, 0.9);  // 9 / 10
+  EXPECT_DOUBLE_EQ(rows[1].overDefaultMax, 1.1);  // 22 / 20 and 11 / 10
+  EXPECT_DOUBLE_EQ(rows[2].overDefault, 1.0);
+  EXPECT_DOUBLE_EQ(rows[2].overDefaultMin, 1.0);
+  EXPECT_DOUBLE_EQ(rows[2].overDefaultMax, 1.0);
+  EXPECT_DOUBLE_EQ(rows[3].overDefault, 3.0);     // 30 / 10
+  EXPECT_DOUBLE_EQ(rows[3].overDefaultMin, 1.5);  // 30 / 20, round 2's; not 20 / 10
+  EXPECT_DOUBLE_EQ(rows[3].overDefaultMax, 4.0);  // 40 / 10
+  // Without a default row (bench --settings naming others only): nothing to count against.
+  lone.rasterRuns = {5};
+  lone.rasterMs = 5;
+  rows.push_back(lone);
+  rc::app::countAgainstDefault(rows, 4);
+  EXPECT_EQ(rows[4].overDefault, 0.0);
+  EXPECT_EQ(rows[4].overDefaultMin, 0.0);
+  EXPECT_EQ(rows[4].overDefaultMax, 0.0);
+  EXPECT_DOUBLE_EQ(rows[3].overDefault, 3.0) << "the earlier scene's rows stay";
+}
+
 // How busy other work kept the machine, from two readings of /proc/stat's first line and this
 // process's own CPU time between them.
 TEST(BenchLoad, OtherWorkIsTheMachinesBusyTimeLessBenchsOwn) {
@@ -508,7 +545,18 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
     EXPECT_EQ(back.rows[i].rasterMs, rows[i].rasterMs);
     EXPECT_EQ(back.rows[i].baryP999, rows[i].baryP999);
     EXPECT_EQ(back.rows[i].disagreementFraction, rows[i].disagreementFraction);
+    EXPECT_EQ(back.rows[i].overDefault, 0.0) << "none written";
   }
+  // Each row's frame over the default's comes back where it was measured.
+  std::vector<BenchRow> counted = rows;
+  counted[1].overDefault = 1.75;
+  counted[1].overDefaultMin = 1.5;
+  counted[1].overDefaultMax = 2.125;
+  const rc::app::BenchResults countedBack = rc::app::readBenchJson(temp.write("counted.json", rc::app::benchJson(counted, machine)));
+  EXPECT_EQ(countedBack.rows[1].overDefault, 1.75);
+  EXPECT_EQ(countedBack.rows[1].overDefaultMin, 1.5);
+  EXPECT_EQ(countedBack.rows[1].overDefaultMax, 2.125);
+  EXPECT_EQ(countedBack.rows[0].overDefault, 0.0);
   ASSERT_TRUE(back.machine.has_value());
   EXPECT_EQ(back.machine->cpu, "test cpu");
   EXPECT_FALSE(back.load.has_value()) << "bench could not read /proc/stat: no load";

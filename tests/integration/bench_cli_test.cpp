@@ -123,6 +123,49 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     EXPECT_EQ(avx2, perspectiveMax);
   }
   EXPECT_EQ(defaults, 1);
+  // Each row's frame over the default's: the medians', and each round's against the default's
+  // frame of the same round, which bracket it.
+  std::vector<double> defaultFrames;
+  double defaultMs = 0;
+  for (const auto& row : rows) {
+    if (!row["default"].get<bool>()) continue;
+    defaultFrames = row.at("raster_ms_runs").get<std::vector<double>>();
+    defaultMs = row["raster_ms"];
+  }
+  for (const auto& row : rows) {
+    const std::vector<double> frames = row.at("raster_ms_runs");
+    double least = frames[0] / defaultFrames[0], greatest = least;
+    for (std::size_t k = 1; k < frames.size(); ++k) {
+      least = std::min(least, frames[k] / defaultFrames[k]);
+      greatest = std::max(greatest, frames[k] / defaultFrames[k]);
+    }
+    const double over = row.at("raster_over_default");
+    EXPECT_EQ(over, row["raster_ms"].get<double>() / defaultMs) << row["setting"];
+    EXPECT_EQ(row.at("raster_over_default_min").get<double>(), least) << row["setting"];
+    EXPECT_EQ(row.at("raster_over_default_max").get<double>(), greatest) << row["setting"];
+    EXPECT_LE(least, over) << row["setting"];
+    EXPECT_GE(greatest, over) << row["setting"];
+    if (row["default"].get<bool>()) {
+      EXPECT_EQ(over, 1.0);
+    }
+    // The table shows it after the spread of the frames, "-" for the default's own row.
+    const std::string setting = row["setting"].get<std::string>() + (row["default"].get<bool>() ? " *" : "");
+    const std::size_t at = r.output.find("\ncube" + std::string(17, ' ') + setting + " ");
+    ASSERT_NE(at, std::string::npos) << setting << "\n" << r.output;
+    std::istringstream line(r.output.substr(at, r.output.find('\n', at + 1) - at));
+    std::string scene, name, star, median, spread, shown, rounds;
+    line >> scene >> name;
+    if (row["default"].get<bool>()) line >> star;
+    line >> median >> spread >> shown;
+    if (row["default"].get<bool>()) {
+      EXPECT_EQ(shown, "-") << r.output;
+      continue;
+    }
+    line >> rounds;
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%.2f (%.2f..%.2f)", over, least, greatest);
+    EXPECT_EQ(shown + " " + rounds, expected) << r.output;
+  }
   // The table's throughput columns are the row's: triangles and pixels over the median frame.
   for (const auto& row : rows) {
     const double seconds = row["raster_ms"].get<double>() * 1e-3;
@@ -132,9 +175,9 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     const std::size_t at = r.output.find("perspective-float-8bit *");
     ASSERT_NE(at, std::string::npos) << r.output;
     std::istringstream line(r.output.substr(at, r.output.find('\n', at) - at));
-    std::string setting, star, median, spread;
+    std::string setting, star, median, spread, overDefault;
     double mtri = 0, mpix = 0;
-    line >> setting >> star >> median >> spread >> mtri >> mpix;
+    line >> setting >> star >> median >> spread >> overDefault >> mtri >> mpix;
     EXPECT_NEAR(mtri, row["triangles_per_second"].get<double>() * 1e-6, 0.006 * mtri) << r.output;
     EXPECT_NEAR(mpix, row["pixels_per_second"].get<double>() * 1e-6, 0.5) << r.output;
   }
@@ -147,10 +190,11 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
     if (lines == 0) {
       EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max,reference_build,reference_low_build_ms,"
                                  "reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
-                                 "speedup_with_build_quality,load_other_processes,load_steal")) << line;
+                                 "speedup_with_build_quality,load_other_processes,load_steal,raster_over_default,"
+                                 "raster_over_default_min,raster_over_default_max")) << line;
     }
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 39) << "40 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 42) << "43 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
@@ -418,6 +462,15 @@ TEST(Cli, BenchTimesOnlyTheSettingsNamed) {
   EXPECT_EQ(rows[1]["setting"], "perspective-float-4bit");
   EXPECT_EQ(rows[1]["default"], false);
   EXPECT_EQ(r.output.find("\n  during "), std::string::npos) << "one scene: its load is the run's";
+  EXPECT_EQ(rows[1].at("raster_over_default").get<double>(),
+            rows[1]["raster_ms"].get<double>() / rows[0]["raster_ms"].get<double>());
+  // Without the default's row there is nothing to count against.
+  const fs::path alone = temp.path() / "alone.json";
+  const CliRun without = run("bench cube --runs 1 -q --settings perspective-float-4bit --json " + alone.string());
+  ASSERT_EQ(without.exitCode, 0) << without.output;
+  const nlohmann::json lone = nlohmann::json::parse(std::ifstream(alone)).at("rows");
+  ASSERT_EQ(lone.size(), 1u) << lone;
+  EXPECT_FALSE(lone[0].contains("raster_over_default")) << lone;
   const fs::path none = temp.path() / "none.json";
   const CliRun bad = run("bench cube --runs 1 -q --settings perspective-float-5bit --json " + none.string());
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
@@ -442,7 +495,7 @@ TEST(Cli, BenchTimesTheSettingsRoundByRound) {
 }
 
 // bench --csv: a scene whose path holds a comma and quotes, and is longer than any fixed line
-// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 40 columns.
+// buffer, comes back as one field (RFC 4180: in quotes, a quote doubled) with all 43 columns.
 TEST(Cli, BenchCsvQuotesAnySceneName) {
   const rc::testing::TempDir temp;
   fs::path dir = temp.path();
@@ -476,7 +529,7 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
     }
   }
   EXPECT_FALSE(quoted) << line;
-  ASSERT_EQ(fields.size(), 40u) << line;
+  ASSERT_EQ(fields.size(), 43u) << line;
   EXPECT_EQ(fields[0], obj.string());
   EXPECT_EQ(fields[1], "1");  // triangles
 }

@@ -102,7 +102,23 @@ TEST(HtmlReport, IsSelfContainedAndEveryImageItNamesExists) {
   EXPECT_NE(html.find("<td>" + rc::formatNumber(first["speedup_min"].get<double>()) + " to " +
                       rc::formatNumber(first["speedup_max"].get<double>()) + "</td>"),
             std::string::npos);
-  EXPECT_EQ(html.find("</td><td>-</td><td>"), std::string::npos);
+  // Each row's frame over the default's, read back from the JSON: "-" in the default's own row,
+  // and no other cell is left without its figure.
+  EXPECT_NE(html.find("<th>raster ms</th><th>x default</th>"), std::string::npos);
+  std::size_t dashes = 0;
+  for (std::size_t at = html.find("</td><td>-</td><td>"); at != std::string::npos; at = html.find("</td><td>-</td><td>", at + 1)) {
+    ++dashes;
+  }
+  EXPECT_EQ(dashes, 1u) << "the default's x default alone";
+  for (const auto& row : bench["rows"]) {
+    if (row["default"].get<bool>()) continue;
+    EXPECT_NE(html.find("<td>" + rc::formatNumber(row["raster_ms"].get<double>()) + "</td><td>" +
+                        rc::formatNumber(row["raster_over_default"].get<double>()) + " (" +
+                        rc::formatNumber(row["raster_over_default_min"].get<double>()) + " to " +
+                        rc::formatNumber(row["raster_over_default_max"].get<double>()) + ")</td>"),
+              std::string::npos)
+        << row["setting"];
+  }
   // And how busy other work kept the machine, as bench measured it.
   ASSERT_EQ(bench.contains("load"), bool(std::ifstream("/proc/stat"))) << "a load wherever bench can read /proc/stat";
   if (bench.contains("load")) {
@@ -176,10 +192,8 @@ TEST(HtmlReport, ShowsEachScenesVerdictReasonsAndFiguresInTheirPlaces) {
             std::string::npos);
 }
 
-// Bench results taken on a busy machine say so in the report, in words that stand out; an idle
-// machine's load is shown without them.
-TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
-  rc::testing::TempDir dir;
+// A bench row of the cube's default setting, as made up for the report's tests.
+rc::app::BenchRow madeUpDefaultBenchRow() {
   rc::app::BenchRow row;
   row.scene = "cube";
   row.setting = "perspective-float-8bit";
@@ -187,6 +201,37 @@ TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
   row.triangles = 12;
   row.width = 64, row.height = 48, row.threads = 2;
   row.rasterMs = 0.5, row.referenceTraceMs = 2, row.speedup = 4;
+  return row;
+}
+
+// Each bench row's frame over its scene's default's: the medians' ratio and each round's least
+// and greatest, in that order; "-" in the default's own row.
+TEST(HtmlReport, ShowsEachBenchRowsFrameOverTheDefaults) {
+  rc::testing::TempDir dir;
+  rc::app::BenchRow def = madeUpDefaultBenchRow();
+  def.overDefault = def.overDefaultMin = def.overDefaultMax = 1;
+  rc::app::BenchRow oneThread = def;
+  oneThread.setting = "perspective-float-8bit-1thread";
+  oneThread.isDefault = false;
+  oneThread.threads = 1;
+  oneThread.rasterMs = 0.875, oneThread.speedup = 2;
+  oneThread.overDefault = 1.75, oneThread.overDefaultMin = 1.5, oneThread.overDefaultMax = 2.25;
+  const std::string out = dir.file("report");
+  fs::create_directories(out);
+  rc::app::writeHtmlReport(out, {madeUpScene("a", true)}, "settings",
+                           rc::app::BenchResults{{def, oneThread}, std::nullopt, std::nullopt});
+  const std::string html = rc::testing::readFile(fs::path(out) / "index.html");
+  EXPECT_NE(html.find("<td>perspective-float-8bit (default)</td><td>2</td><td>0.5</td><td>-</td>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<td>perspective-float-8bit-1thread</td><td>1</td><td>0.875</td><td>1.75 (1.5 to 2.25)</td>"),
+            std::string::npos)
+      << html;
+}
+
+// Bench results taken on a busy machine say so in the report, in words that stand out; an idle
+// machine's load is shown without them.
+TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
+  rc::testing::TempDir dir;
+  rc::app::BenchRow row = madeUpDefaultBenchRow();
   for (const bool busy : {true, false}) {
     const std::string out = dir.file(busy ? "busy" : "idle");
     fs::create_directories(out);
