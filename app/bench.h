@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_conditions.h"
 #include "app/settings.h"
 
 namespace rc::app {
@@ -31,41 +32,6 @@ std::string benchSettingName(Interpolation mode, Precision precision, int subpix
 // for the default's), in the sweep's order; every one where `names` is empty. A name that no
 // setting has is a usage error naming it and listing the names there are.
 std::vector<BenchSetting> pickSettings(const std::vector<BenchSetting>& sweep, const std::vector<std::string>& names);
-
-// How busy the machine was with other work while bench ran: the shares of all its CPUs' time
-// that other processes used, and that the hypervisor gave to other guests (steal). Figures
-// taken on a busy machine are slower and noisier than on an idle one; these say so.
-struct BenchLoad {
-  double others = 0, steal = 0;  // 0 to 1
-};
-// The machine's CPU time as the first line of /proc/stat counts it, in its ticks: busy (user,
-// nice, system, irq, softirq), steal, and all of it (idle and iowait too). Nothing where the
-// text has no such line.
-struct CpuTimes {
-  double busy = 0, steal = 0, total = 0;
-};
-std::optional<CpuTimes> parseProcStat(const std::string& text);
-// The load between two readings of /proc/stat, during which this process itself used
-// `ownTicks` of CPU time (which is not the others').
-BenchLoad loadBetween(const CpuTimes& before, const CpuTimes& after, double ownTicks);
-// Reads /proc/stat and this process's CPU time when made, and the load since when asked;
-// nothing where /proc/stat cannot be read.
-class LoadMeter {
- public:
-  LoadMeter();
-  std::optional<BenchLoad> load() const;
-
- private:
-  std::optional<CpuTimes> start_;
-  double ownStart_ = 0;
-};
-// "other processes used 0.4% of the CPUs' time, the hypervisor's other guests 0.0% (steal)"
-std::string describe(const BenchLoad& load);
-std::string percentOf(double share);  // 0.004: "0.4%"
-// Where other work and steal took more than 5% of the CPUs' time, enough to slow the figures
-// and spread them: "a busy machine, so slower and noisier figures than an idle one gives";
-// else nothing.
-std::string busyNote(const BenchLoad& load);
 
 struct BenchRow {
   std::string scene, setting;
@@ -158,47 +124,5 @@ std::string timingPhrase(int runs);
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings,
                                const std::vector<BenchSetting>& sweep, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step);
-
-// A cache of a CPU: "L1d", "L2", "L3", and its size as sysfs writes it ("1024K").
-struct CpuCache {
-  std::string name, size;
-};
-// The CPU as the text of /proc/cpuinfo names its first processor, with its caches:
-// "AMD EPYC (family 26, model 2, stepping 1; L1d 48K, L2 1024K, L3 32768K)". The model name
-// alone ("unknown" where there is none) can be a whole family's in a virtual machine; the
-// family, model and stepping tell its generations apart, and the caches say what fits.
-std::string cpuDescription(const std::string& cpuinfo, const std::vector<CpuCache>& caches);
-
-// What the figures were measured on: the CPU (cpuDescription of this machine), its logical
-// CPUs, the widest kernels and the fastest Embree mode it runs, and the builds of the
-// compiler, Embree and rastercheck.
-struct BenchMachine {
-  std::string cpu;
-  int logicalCpus = 0;
-  std::string widestKernelIsa, fastestEmbreeIsa, compiler, embree, rastercheck;
-};
-BenchMachine benchMachine();
-// One line: "AMD EPYC (...), 2 logical CPUs (kernels up to avx512, Embree avx512); GCC 12.2.0, ...",
-// its hardware and its builds, which the two functions after it give apart.
-std::string describe(const BenchMachine& machine);
-std::string describeHardware(const BenchMachine& machine);  // "AMD EPYC (...), 2 logical CPUs (...)"
-std::string describeBuilds(const BenchMachine& machine);    // "GCC 12.2.0, Embree 3.13.5, rastercheck 0.1.0"
-
-// `load`, where measured, goes in as "load": {"other_processes", "steal"}.
-std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& machine,
-                      const std::optional<BenchLoad>& load = std::nullopt);
-
-// What benchJson wrote: the rows, the machine where the file has one (bench wrote none before
-// session 17), and the load where it has one (none before session 43, or where bench could not
-// read /proc/stat).
-struct BenchResults {
-  std::vector<BenchRow> rows;
-  std::optional<BenchMachine> machine;
-  std::optional<BenchLoad> load;
-};
-// Reads what benchJson wrote, the rows' loads too; throws ioError / badInput naming the file
-// and the JSON pointer (a load share outside 0 to 1 too).
-BenchResults readBenchJson(const std::string& path);
-std::string benchCsv(const std::vector<BenchRow>& rows);
 
 }  // namespace rc::app

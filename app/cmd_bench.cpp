@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/bench.h"
+#include "app/bench_files.h"
 #include "app/bench_chart.h"
 #include "app/commands.h"
 #include "app/options.h"

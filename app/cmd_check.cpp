@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench.h"
+#include "app/bench_files.h"
 #include "app/check.h"
 #include "app/commands.h"
 #include "app/html_report.h"

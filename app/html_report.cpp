@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "app/bench.h"
+#include "app/bench_files.h"
 #include "app/bench_chart.h"
 #include "compare/report.h"
 #include "core/atomic_file.h"

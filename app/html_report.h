@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "app/bench.h"
+#include "app/bench_files.h"
 #include "compare/compare.h"
 
 namespace rc::app {

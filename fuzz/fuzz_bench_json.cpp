@@ -1,5 +1,5 @@
 // libFuzzer target: bench results given to check --bench-json, read and drawn as the SVG chart.
-#include "app/bench.h"
+#include "app/bench_files.h"
 #include "app/bench_chart.h"
 #include "core/error.h"
 #include "fuzz/fuzz_input.h"

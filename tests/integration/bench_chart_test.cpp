@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/bench.h"
+#include "app/bench_files.h"
 #include "app/bench_chart.h"
 #include "core/error.h"
 #include "core/parallel.h"
