@@ -33,6 +33,7 @@
 #include "rasterizer/setup.h"
 #include "rasterizer/setup_batch.h"
 #include "rasterizer/tile_kernel.h"
+#include "rasterizer/transform.h"
 #include "rasterizer/vertex_order.h"
 
 namespace rc {
@@ -106,96 +107,6 @@ constexpr std::size_t kMaxBlocks = 4094;
 constexpr std::size_t kVertexPrefetchMinVertices = 16384;
 constexpr std::size_t kVertexPrefetchAhead = 16;
 constexpr std::size_t kMaxTrianglesPerBlock = (std::size_t(1) << kernel::kBlockShift) / (kMaxClipVertices - 2) - 1;
-
-// Raster position of a clip-space point inside the view volume.
-glm::dvec2 rasterOf(const Camera& camera, const glm::dvec4& c) {
-  return {camera.rasterXFromNdc(c.x / c.w), camera.rasterYFromNdc(c.y / c.w)};
-}
-
-// What the transform finds out about a block of vertices: the largest |world coordinate| (at
-// least 1) and the nearest clip w, which bound the transform's rounding (clipError, culling,
-// the edge band), and the or of their outcodes.
-struct VertexFacts {
-  double largest = 1.0;
-  double nearestW = std::numeric_limits<double>::infinity();
-  unsigned outcodes = 0;
-};
-
-// The transform of positions [begin, end): each vertex's clip position, outcode and (when the
-// outcode is 0) raster position, into the frame's arrays with non-temporal stores, and the
-// block's VertexFacts, folded into facts. The lines
-// were last read by the other core's tiles, and a store that bypasses the cache need not take
-// them from it first (BM_Frame at 1M, 2 threads: transform about 3.9 down to 2.0 to 2.6 ms; on
-// 1 thread, whose lines are its own, 2.8 up to 3.5 ms). Set-up reads them back no slower.
-void transformScalar(const glm::vec3* positions, std::size_t begin, std::size_t end, const glm::dmat4& m,
-                     const ClipVolume<double>& volume, const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
-                     std::uint8_t* outcode, VertexFacts& factsOut) {
-  VertexFacts facts = factsOut;  // in registers: the outcode stores may alias factsOut
-  for (std::size_t i = begin; i < end; ++i) {
-    const glm::dvec3 p(positions[i]);
-    const glm::dvec4 c = m * glm::dvec4(p, 1.0);
-    double* to = reinterpret_cast<double*>(clip + i);
-    _mm_stream_pd(to, _mm_set_pd(c.y, c.x));
-    _mm_stream_pd(to + 2, _mm_set_pd(c.w, c.z));
-    outcode[i] = std::uint8_t(volume.outcode(c));
-    facts.outcodes |= outcode[i];
-    glm::dvec2 r(0.0);
-    if (outcode[i] == 0) r = rasterOf(camera, c);  // what emit() would compute
-    _mm_stream_pd(reinterpret_cast<double*>(raster + i), _mm_set_pd(r.y, r.x));
-    facts.largest = std::max({facts.largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    facts.nearestW = std::min(facts.nearestW, c.w);
-  }
-  factsOut = facts;
-}
-
-// transformScalar with AVX2, one vertex per 4-lane register. Every value takes the same IEEE
-// operations as there, so the same bits: glm's mat4 * vec4 is (m0 x + m1 y) + (m2 z + m3 w),
-// with w = 1 so that m3 w is m3; a distance guard w - x is guard w + (-x); the raster y,
-// (1 - y / w) 0.5 height, has 1 - t as -t + 1. A third of the scalar loop's instructions
-// (callgrind).
-__attribute__((target("avx2"))) void transformAvx2(const glm::vec3* positions, std::size_t begin, std::size_t end,
-                                                   const glm::dmat4& m, const ClipVolume<double>& volume,
-                                                   const Camera& camera, glm::dvec4* clip, glm::dvec2* raster,
-                                                   std::uint8_t* outcode, VertexFacts& facts) {
-  const double width = camera.width(), height = camera.height();
-  const __m256d m0 = _mm256_loadu_pd(&m[0][0]), m1 = _mm256_loadu_pd(&m[1][0]);
-  const __m256d m2 = _mm256_loadu_pd(&m[2][0]), m3 = _mm256_loadu_pd(&m[3][0]);
-  const __m256d guard = _mm256_set1_pd(volume.guard);
-  const __m256d negateXY = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);  // lanes -x, +x, -y, +y
-  const __m128d negateY = _mm_set_pd(-0.0, 0.0), one = _mm_set1_pd(1.0), half = _mm_set1_pd(0.5);
-  const __m128d size = _mm_set_pd(height, width);
-  const bool farPlane = !std::isinf(volume.zFar);
-  double largest = facts.largest, nearestW = facts.nearestW;
-  unsigned outcodes = facts.outcodes;
-  for (std::size_t i = begin; i < end; ++i) {
-    const double px = positions[i].x, py = positions[i].y, pz = positions[i].z;
-    const __m256d c = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, _mm256_set1_pd(px)), _mm256_mul_pd(m1, _mm256_set1_pd(py))),
-                                    _mm256_add_pd(_mm256_mul_pd(m2, _mm256_set1_pd(pz)), m3));
-    double* to = reinterpret_cast<double*>(clip + i);  // 16-byte aligned: two streams, as the scalar loop
-    _mm_stream_pd(to, _mm256_castpd256_pd128(c));
-    _mm_stream_pd(to + 2, _mm256_extractf128_pd(c, 1));
-    const __m256d w4 = _mm256_permute4x64_pd(c, 0xFF);
-    const double w = _mm256_cvtsd_f64(w4);
-    // ClipVolume::outcode: planes 2 to 5 are guard w -+ x and guard w -+ y, outside unless >= 0.
-    const __m256d d = _mm256_add_pd(_mm256_mul_pd(guard, w4), _mm256_xor_pd(_mm256_permute4x64_pd(c, 0x50), negateXY));
-    unsigned code = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_NGE_UQ))) << 2;
-    if (!(w - volume.zNear >= 0.0)) code |= 1u;
-    if (farPlane && !(volume.zFar - w >= 0.0)) code |= 2u;
-    outcode[i] = std::uint8_t(code);
-    outcodes |= code;
-    __m128d r = _mm_setzero_pd();
-    if (code == 0) {
-      const __m128d ndc = _mm_div_pd(_mm256_castpd256_pd128(c), _mm256_castpd256_pd128(w4));
-      r = _mm_mul_pd(_mm_mul_pd(_mm_add_pd(_mm_xor_pd(ndc, negateY), one), half), size);
-    }
-    _mm_stream_pd(reinterpret_cast<double*>(raster + i), r);
-    largest = std::max({largest, std::fabs(px), std::fabs(py), std::fabs(pz)});
-    nearestW = std::min(nearestW, w);
-  }
-  facts.largest = largest;
-  facts.nearestW = nearestW;
-  facts.outcodes = outcodes;
-}
 
 // A block's coverage set-ups, in order. They go into the block's slice of one frame-wide
 // array (in huge pages: the slices of a million-triangle frame are 64 MB, a fault per 4 KB page
