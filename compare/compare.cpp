@@ -248,26 +248,11 @@ double attributeRange(const Family& f, const PlaneVector<PixelClass>& classes) {
   return hi > lo ? hi - lo : 0.0;
 }
 
-}  // namespace
-
-CompareReport compareImages(const Framebuffer& test, const std::string& testPath,
-                            const Framebuffer& ref, const std::string& refPath,
-                            const Thresholds& thresholds, Framebuffer* heatmap, int threads) {
-  if (test.width() != ref.width() || test.height() != ref.height()) {
-    throw badInput(testPath, "size " + std::to_string(test.width()) + "x" +
-                                 std::to_string(test.height()) + " differs from " + refPath + " (" +
-                                 std::to_string(ref.width()) + "x" + std::to_string(ref.height()) + ")");
-  }
-  const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
-  const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
-  CompareReport report;
-  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds, report.leftOut);
-  report.testPath = testPath;
-  report.referencePath = refPath;
-  report.width = test.width();
-  report.height = test.height();
-  report.thresholds = thresholds;
-  const std::size_t n = test.pixelCount();
+// Each pixel's class, by the triangle each image has there, counted into the report with the
+// fractions of the covered pixels that disagree and that one side alone covers.
+PlaneVector<PixelClass> classifyPixels(const PlaneVector<std::uint32_t>& testIds, const PlaneVector<std::uint32_t>& refIds,
+                                       CompareReport& report) {
+  const std::size_t n = testIds.size();
   // Per-pixel arrays in huge pages where the kernel allows (core/plane_allocator.h).
   PlaneVector<PixelClass> classes(n);  // every element is assigned below
   for (std::size_t i = 0; i < n; ++i) {
@@ -284,150 +269,169 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.disagreementFraction = double(report.classCounts[int(PixelClass::kDifferentTriangle)]) / covered;
   report.coverageFraction = double(report.classCounts[int(PixelClass::kTestOnly)] +
                                     report.classCounts[int(PixelClass::kReferenceOnly)]) / covered;
+  return classes;
+}
 
-  // Diagnostics: per-pixel bounds and edge distances, and each path's bands (docs/numerics.md).
-  const float* boundTest[2] = {optionalFloat(test, channels::kBaryBound), optionalFloat(test, channels::kDepthBound)};
-  const float* boundRef[2] = {optionalFloat(ref, channels::kBaryBound), optionalFloat(ref, channels::kDepthBound)};
-  const bool bounded = boundTest[0] && boundTest[1] && boundRef[0] && boundRef[1];
-  const float* edgeTest = optionalFloat(test, channels::kEdgeDistance);
-  const float* edgeRef = optionalFloat(ref, channels::kEdgeDistance);
-  const float* tieTest = optionalFloat(test, channels::kDepthTie);
-  const float* tieRef = optionalFloat(ref, channels::kDepthTie);
-  const double bandTest = headerNumber(test, channels::header::kEdgeBand);
-  const double bandRef = headerNumber(ref, channels::header::kEdgeBand);
-  const double resolutionTest = headerNumber(test, channels::header::kDepthResolution);
-  const double resolutionRef = headerNumber(ref, channels::header::kDepthResolution);
-  report.explained = edgeTest && edgeRef && std::isfinite(bandTest) && std::isfinite(bandRef) &&
-                     (tieTest || std::isfinite(resolutionTest)) && (tieRef || std::isfinite(resolutionRef));
-  report.edgeBand = report.explained ? bandTest + bandRef : 0.0;
-
-  std::vector<float*> errorPlanes, ratioPlanes;
-  float* ulpPlane = nullptr;
-  std::uint32_t* explanationPlane = nullptr;
-  if (heatmap) {
-    *heatmap = Framebuffer(test.width(), test.height());
-    for (const Family& f : families) errorPlanes.push_back(heatmap->addFloat("error." + f.name));
-    if (bounded) {
-      for (const Family& f : families) ratioPlanes.push_back(heatmap->addFloat("ratio." + f.name));
-    }
-    ulpPlane = heatmap->addFloat("ulps.bary");
+// What the two images' diagnostics give (docs/numerics.md): per-pixel bounds and edge distances,
+// depth ties, and each path's edge band and depth resolution from its header. Any of them may be
+// absent: a pointer is null and a number NaN then.
+struct Diagnostics {
+  const float* boundTest[2];  // barycentric, depth
+  const float* boundRef[2];
+  bool bounded;  // all four bounds: the gate holds errors to them
+  const float *edgeTest, *edgeRef, *tieTest, *tieRef;
+  double bandTest, bandRef, resolutionTest, resolutionRef;
+  // Enough to explain a disagreement: both edge distances and bands, and each side's depth
+  // resolution per pixel or from its header.
+  bool explains() const {
+    return edgeTest && edgeRef && std::isfinite(bandTest) && std::isfinite(bandRef) &&
+           (tieTest || std::isfinite(resolutionTest)) && (tieRef || std::isfinite(resolutionRef));
   }
-  // A pixel where some family holds a NaN or Inf, per family (they run in parallel), for the
-  // heatmap's colours only.
-  std::vector<PlaneVector<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
-  for (auto& flags : nonFiniteOf) flags.assign(n, 0);
-  const std::size_t sameTriangle = report.classCounts[int(PixelClass::kSameTriangle)];
+};
+
+Diagnostics diagnosticsOf(const Framebuffer& test, const Framebuffer& ref) {
+  Diagnostics d{{optionalFloat(test, channels::kBaryBound), optionalFloat(test, channels::kDepthBound)},
+                {optionalFloat(ref, channels::kBaryBound), optionalFloat(ref, channels::kDepthBound)},
+                false,
+                optionalFloat(test, channels::kEdgeDistance),
+                optionalFloat(ref, channels::kEdgeDistance),
+                optionalFloat(test, channels::kDepthTie),
+                optionalFloat(ref, channels::kDepthTie),
+                headerNumber(test, channels::header::kEdgeBand),
+                headerNumber(ref, channels::header::kEdgeBand),
+                headerNumber(test, channels::header::kDepthResolution),
+                headerNumber(ref, channels::header::kDepthResolution)};
+  d.bounded = d.boundTest[0] && d.boundTest[1] && d.boundRef[0] && d.boundRef[1];
+  return d;
+}
+
+// The heatmap planes of one family, each null where not made: its error, its error over its
+// bound, the barycentrics' error in ulps, and the pixels where it holds a NaN or Inf.
+struct FamilyPlanes {
+  float* error = nullptr;
+  float* ratio = nullptr;
+  float* ulps = nullptr;
+  std::uint8_t* nonFinite = nullptr;
+};
+
+// One family's statistics over the pixels both images give the same triangle, in pixel order
+// (its sums are added in the same order whatever the thread count), and its gated figure.
+FamilyReport measureFamily(const Family& f, const PlaneVector<PixelClass>& classes, const Diagnostics& d,
+                           const Thresholds& thresholds, std::size_t sameTriangle, int width, const FamilyPlanes& planes) {
+  const bool bounded = d.bounded;
+  const std::size_t n = classes.size();
+  FamilyReport fr;
+  fr.name = f.name;
+  fr.bounded = bounded;
+  if (f.kind == Family::kAttribute) fr.range = attributeRange(f, classes);
+  StatsAccumulator acc, ulps, ratios;
+  acc.reserve(sameTriangle);
+  ulps.reserve(sameTriangle);
+  if (bounded) ratios.reserve(sameTriangle);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PixelClass c = classes[i];
+    if (c == PixelClass::kBothEmpty) continue;
+    bool bad = false;
+    if (c != PixelClass::kReferenceOnly) bad |= countNonFinite(f.test, i, acc);
+    if (!bad && c != PixelClass::kTestOnly) bad |= countNonFinite(f.reference, i, acc);
+    if (bad && planes.nonFinite) planes.nonFinite[i] = 1;
+    if (bad || c != PixelClass::kSameTriangle) continue;
+    double error = -1.0, tv = 0.0, rv = 0.0, ratio = 0.0, ulp = 0.0;
+    for (std::size_t k = 0; k < f.test.size(); ++k) {
+      const double t = f.test[k][i], r = f.reference[k][i];
+      double e = std::fabs(t - r);
+      if (f.kind == Family::kDepth && r != 0.0) e /= std::fabs(r);
+      if (e > error) error = e, tv = t, rv = r;
+      // Ulps: of 1 for barycentrics, of the value for depth (e is relative), of the range.
+      const double unit = f.kind == Family::kBary    ? floatUlp(1.0) / 2.0
+                          : f.kind == Family::kDepth ? floatUlp(r) / std::max(std::fabs(r), 1e-300)
+                                                     : floatUlp(std::max(fr.range, std::fabs(r)));
+      ulp = std::max(ulp, e / unit);
+      if (bounded) {
+        // The bound of docs/numerics.md: barycentrics and depth add the two paths' bounds;
+        // an attribute adds their barycentric bounds times three times its range (the sum
+        // of |db_i| |a_i - c| over a triangle's vertices) and float rounding of the sums.
+        const double bary = double(d.boundTest[0][i]) + double(d.boundRef[0][i]);
+        const double bound = f.kind == Family::kBary    ? bary
+                             : f.kind == Family::kDepth ? double(d.boundTest[1][i]) + double(d.boundRef[1][i])
+                                                        : 3.0 * bary * fr.range + 0x1p-21 * (std::fabs(r) + fr.range);
+        const double q = bound > 0.0 ? e / bound : (e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+        ratio = std::max(ratio, q);
+      }
+    }
+    const int px = int(i % width), py = int(i / width);
+    acc.addError(error, px, py, tv, rv);
+    ulps.addError(ulp, px, py, tv, rv);
+    if (bounded) ratios.addError(ratio, px, py, tv, rv);
+    if (planes.error) planes.error[i] = float(error);
+    if (planes.ratio) planes.ratio[i] = float(ratio);
+    if (planes.ulps) planes.ulps[i] = float(ulp);
+  }
+  fr.stats = acc.finish();
+  fr.ulps = ulps.finish();
+  fr.ratio = ratios.finish();
+  fr.unit = f.kind == Family::kDepth ? "relative" : "absolute";
+  fr.threshold = bounded                     ? 1.0
+                 : f.kind == Family::kBary   ? thresholds.bary
+                 : f.kind == Family::kDepth  ? thresholds.depth
+                                             : thresholds.attributeLimit(attributeName(f.name));
+  fr.gated = bounded ? fr.ratio.max : fr.stats.max;
+  if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
+  return fr;
+}
+
+// Each disagreement explained where the diagnostics allow (docs/numerics.md): within the edge
+// band, or a depth tie (with the other surface, or with a clipping plane), else unexplained;
+// counted into the report with the first unexplained pixel.
+PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Framebuffer& ref,
+                                              const PlaneVector<PixelClass>& classes, const Diagnostics& d,
+                                              CompareReport& report) {
+  const std::size_t n = classes.size();
   const int width = test.width();
-  report.families.resize(families.size());
-  // Each family on one thread, in pixel order: its sums are added in the same order whatever
-  // the thread count. The heaviest (bary: three components) comes first.
-  // Below about a 256x256 image a thread costs more than it saves.
-  const int workers = n < (std::size_t(1) << 16) ? 1 : threads;
-  parallelFor(int(families.size()), workers, [&](int index) {
-    const std::size_t fi = std::size_t(index);
-    const Family& f = families[fi];
-    FamilyReport& fr = report.families[fi];
-    fr.name = f.name;
-    fr.bounded = bounded;
-    if (f.kind == Family::kAttribute) fr.range = attributeRange(f, classes);
-    StatsAccumulator acc, ulps, ratios;
-    acc.reserve(sameTriangle);
-    ulps.reserve(sameTriangle);
-    if (bounded) ratios.reserve(sameTriangle);
-    for (std::size_t i = 0; i < n; ++i) {
-      const PixelClass c = classes[i];
-      if (c == PixelClass::kBothEmpty) continue;
-      bool bad = false;
-      if (c != PixelClass::kReferenceOnly) bad |= countNonFinite(f.test, i, acc);
-      if (!bad && c != PixelClass::kTestOnly) bad |= countNonFinite(f.reference, i, acc);
-      if (bad && heatmap) nonFiniteOf[fi][i] = 1;
-      if (bad || c != PixelClass::kSameTriangle) continue;
-      double error = -1.0, tv = 0.0, rv = 0.0, ratio = 0.0, ulp = 0.0;
-      for (std::size_t k = 0; k < f.test.size(); ++k) {
-        const double t = f.test[k][i], r = f.reference[k][i];
-        double e = std::fabs(t - r);
-        if (f.kind == Family::kDepth && r != 0.0) e /= std::fabs(r);
-        if (e > error) error = e, tv = t, rv = r;
-        // Ulps: of 1 for barycentrics, of the value for depth (e is relative), of the range.
-        const double unit = f.kind == Family::kBary    ? floatUlp(1.0) / 2.0
-                            : f.kind == Family::kDepth ? floatUlp(r) / std::max(std::fabs(r), 1e-300)
-                                                       : floatUlp(std::max(fr.range, std::fabs(r)));
-        ulp = std::max(ulp, e / unit);
-        if (bounded) {
-          // The bound of docs/numerics.md: barycentrics and depth add the two paths' bounds;
-          // an attribute adds their barycentric bounds times three times its range (the sum
-          // of |db_i| |a_i - c| over a triangle's vertices) and float rounding of the sums.
-          const double bary = double(boundTest[0][i]) + double(boundRef[0][i]);
-          const double bound = f.kind == Family::kBary    ? bary
-                               : f.kind == Family::kDepth ? double(boundTest[1][i]) + double(boundRef[1][i])
-                                                          : 3.0 * bary * fr.range + 0x1p-21 * (std::fabs(r) + fr.range);
-          const double q = bound > 0.0 ? e / bound : (e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
-          ratio = std::max(ratio, q);
+  const auto& testIds = test.find(channels::kTriangleId)->uints;
+  const auto& refIds = ref.find(channels::kTriangleId)->uints;
+  PlaneVector<Explanation> explanations(n, Explanation::kUnexplained);
+  const float* depthTest = test.find(channels::kDepth)->floats.data();
+  const float* depthRef = ref.find(channels::kDepth)->floats.data();
+  std::vector<double> clips = clipDepths(test);
+  for (double depth : clipDepths(ref)) clips.push_back(depth);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PixelClass c = classes[i];
+    if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
+    const bool t = c != PixelClass::kReferenceOnly, r = c != PixelClass::kTestOnly;
+    Explanation e = Explanation::kUnexplained;
+    if ((t && double(d.edgeTest[i]) <= report.edgeBand) || (r && double(d.edgeRef[i]) <= report.edgeBand)) {
+      e = Explanation::kEdgeBand;
+    } else {
+      // Each path's depth-test resolution at the pixel: its depth.tie there (0 where it drew
+      // nothing), else its header's.
+      const double tie = (d.tieTest ? double(d.tieTest[i]) : d.resolutionTest) + (d.tieRef ? double(d.tieRef[i]) : d.resolutionRef);
+      if (t && r) {
+        // The winner's own resolution is known here; the loser's is taken to be at most as
+        // large again (the factor 2), the other path's is added.
+        const double zt = depthTest[i], zr = depthRef[i];
+        if (std::fabs(zt - zr) <= 2.0 * tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
+      } else {
+        // One side only, off every edge: a surface at the near or the far plane, which one
+        // path keeps and the other clips, tied with that plane within the same tolerance.
+        const double z = t ? depthTest[i] : depthRef[i];
+        for (double clip : clips) {
+          if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
         }
-      }
-      const int px = int(i % width), py = int(i / width);
-      acc.addError(error, px, py, tv, rv);
-      ulps.addError(ulp, px, py, tv, rv);
-      if (bounded) ratios.addError(ratio, px, py, tv, rv);
-      if (heatmap) {
-        errorPlanes[fi][i] = float(error);
-        if (bounded) ratioPlanes[fi][i] = float(ratio);
-        if (f.kind == Family::kBary) ulpPlane[i] = float(ulp);
       }
     }
-    fr.stats = acc.finish();
-    fr.ulps = ulps.finish();
-    fr.ratio = ratios.finish();
-    fr.unit = f.kind == Family::kDepth ? "relative" : "absolute";
-    fr.threshold = bounded                     ? 1.0
-                   : f.kind == Family::kBary   ? thresholds.bary
-                   : f.kind == Family::kDepth  ? thresholds.depth
-                                               : thresholds.attributeLimit(attributeName(f.name));
-    fr.gated = bounded ? fr.ratio.max : fr.stats.max;
-    if (!bounded && f.kind == Family::kAttribute && fr.range > 0.0) fr.gated = fr.stats.max / fr.range;
-  });
-
-  // Disagreements, explained where the diagnostics allow (docs/numerics.md).
-  PlaneVector<Explanation> explanations(report.explained ? n : 0, Explanation::kUnexplained);
-  if (report.explained) {
-    const float* depthTest = test.find(channels::kDepth)->floats.data();
-    const float* depthRef = ref.find(channels::kDepth)->floats.data();
-    std::vector<double> clips = clipDepths(test);
-    for (double depth : clipDepths(ref)) clips.push_back(depth);
-    for (std::size_t i = 0; i < n; ++i) {
-      const PixelClass c = classes[i];
-      if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
-      const bool t = c != PixelClass::kReferenceOnly, r = c != PixelClass::kTestOnly;
-      Explanation e = Explanation::kUnexplained;
-      if ((t && double(edgeTest[i]) <= report.edgeBand) || (r && double(edgeRef[i]) <= report.edgeBand)) {
-        e = Explanation::kEdgeBand;
-      } else {
-        // Each path's depth-test resolution at the pixel: its depth.tie there (0 where it drew
-        // nothing), else its header's.
-        const double tie = (tieTest ? double(tieTest[i]) : resolutionTest) + (tieRef ? double(tieRef[i]) : resolutionRef);
-        if (t && r) {
-          // The winner's own resolution is known here; the loser's is taken to be at most as
-          // large again (the factor 2), the other path's is added.
-          const double zt = depthTest[i], zr = depthRef[i];
-          if (std::fabs(zt - zr) <= 2.0 * tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
-        } else {
-          // One side only, off every edge: a surface at the near or the far plane, which one
-          // path keeps and the other clips, tied with that plane within the same tolerance.
-          const double z = t ? depthTest[i] : depthRef[i];
-          for (double clip : clips) {
-            if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
-          }
-        }
-      }
-      explanations[i] = e;
-      ++report.explanationCounts[int(e)];
-      if (e == Explanation::kUnexplained && report.firstUnexplained.x < 0) {
-        report.firstUnexplained = {int(i % width), int(i / width), double(testIds[i]), double(refIds[i])};
-      }
+    explanations[i] = e;
+    ++report.explanationCounts[int(e)];
+    if (e == Explanation::kUnexplained && report.firstUnexplained.x < 0) {
+      report.firstUnexplained = {int(i % width), int(i / width), double(testIds[i]), double(refIds[i])};
     }
   }
+  return explanations;
+}
 
-  // The gate. Every comparison is written !(value <= limit) so that a NaN fails it.
+// The gate's reasons, and the verdict and warnings that follow from them. Every comparison is
+// written !(value <= limit) so that a NaN fails it.
+void gate(CompareReport& report, const Thresholds& thresholds) {
   if (report.coveredEither == 0 && !thresholds.allowEmpty) {
     report.reasons.push_back("neither image covers a pixel, so nothing was compared (--allow-empty lets such a pair pass)");
   }
@@ -460,47 +464,111 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.pass = report.reasons.empty();
   report.warnings = warningsOf(report, thresholds.warn);
   report.settleWarnings();
+}
 
-  if (heatmap) {
-    std::uint32_t* classPlane = heatmap->addUint("class.id");
-    if (report.explained) explanationPlane = heatmap->addUint("explanation.id");
-    float* rgb[3] = {heatmap->addFloat("R"), heatmap->addFloat("G"), heatmap->addFloat("B")};
-    const HeatmapQuantity quantity = thresholds.heatmap == HeatmapQuantity::kBoundRatio && !bounded
-                                         ? HeatmapQuantity::kError
-                                         : thresholds.heatmap;
-    const HeatScale scale = heatScale(quantity);
-    const float* shown = heatmap->find(quantity == HeatmapQuantity::kError  ? "error.bary"
-                                       : quantity == HeatmapQuantity::kUlps ? "ulps.bary"
-                                                                            : "ratio.bary")
-                             ->floats.data();
-    const int rows = test.height();
-    parallelFor((rows + 15) / 16, workers, [&](int band) {
-      const std::size_t first = std::size_t(band) * 16 * width;
-      const std::size_t last = std::min(n, first + std::size_t(16) * width);
-      for (std::size_t i = first; i < last; ++i) {
-        classPlane[i] = std::uint32_t(classes[i]);
-        if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
-        const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
-        const bool nonFinite =
-            std::any_of(nonFiniteOf.begin(), nonFiniteOf.end(), [i](const auto& flags) { return flags[i] != 0; });
-        Rgb colour = nonFinite                                      ? kColourNonFinite
-                     : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
-                     : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
-                     : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
-                     : disagree                                     ? kColourOneSideOnly
-                                                                    : heatColour(shown[i], scale);
-        colour = linearFromSrgb(colour);
-        for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
-      }
-    });
-    heatmap->attributes["rastercheck.heatmap"] =
-        std::string("RGB: ") + scale.title + " on a log10 magma scale from 1e" + std::to_string(int(scale.logMin)) +
-        " to 1e" + std::to_string(int(scale.logMax)) +
-        "; green: different triangle; cyan: one side only; red: unexplained disagreement; magenta: NaN/Inf; grey: empty";
-    heatmap->attributes["rastercheck.heatmapQuantity"] = scale.key;
-    heatmap->attributes["rastercheck.test"] = testPath;
-    heatmap->attributes["rastercheck.reference"] = refPath;
+// The heatmap's class and explanation planes, and its RGB: each pixel's colour by its class,
+// its explanation and its non-finite values, else the chosen quantity on the magma scale.
+void paintHeatmap(Framebuffer& heatmap, const CompareReport& report, const Thresholds& thresholds,
+                  const PlaneVector<PixelClass>& classes, const PlaneVector<Explanation>& explanations,
+                  const std::vector<PlaneVector<std::uint8_t>>& nonFiniteOf, bool bounded, int workers) {
+  const std::size_t n = classes.size();
+  const int width = heatmap.width();
+  std::uint32_t* classPlane = heatmap.addUint("class.id");
+  std::uint32_t* explanationPlane = report.explained ? heatmap.addUint("explanation.id") : nullptr;
+  float* rgb[3] = {heatmap.addFloat("R"), heatmap.addFloat("G"), heatmap.addFloat("B")};
+  const HeatmapQuantity quantity = thresholds.heatmap == HeatmapQuantity::kBoundRatio && !bounded
+                                       ? HeatmapQuantity::kError
+                                       : thresholds.heatmap;
+  const HeatScale scale = heatScale(quantity);
+  const float* shown = heatmap.find(quantity == HeatmapQuantity::kError  ? "error.bary"
+                                    : quantity == HeatmapQuantity::kUlps ? "ulps.bary"
+                                                                         : "ratio.bary")
+                           ->floats.data();
+  const int rows = heatmap.height();
+  parallelFor((rows + 15) / 16, workers, [&](int band) {
+    const std::size_t first = std::size_t(band) * 16 * width;
+    const std::size_t last = std::min(n, first + std::size_t(16) * width);
+    for (std::size_t i = first; i < last; ++i) {
+      classPlane[i] = std::uint32_t(classes[i]);
+      if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
+      const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
+      const bool nonFinite =
+          std::any_of(nonFiniteOf.begin(), nonFiniteOf.end(), [i](const auto& flags) { return flags[i] != 0; });
+      Rgb colour = nonFinite                                      ? kColourNonFinite
+                   : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
+                   : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
+                   : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
+                   : disagree                                     ? kColourOneSideOnly
+                                                                  : heatColour(shown[i], scale);
+      colour = linearFromSrgb(colour);
+      for (int k = 0; k < 3; ++k) rgb[k][i] = colour[k];
+    }
+  });
+  heatmap.attributes["rastercheck.heatmap"] =
+      std::string("RGB: ") + scale.title + " on a log10 magma scale from 1e" + std::to_string(int(scale.logMin)) +
+      " to 1e" + std::to_string(int(scale.logMax)) +
+      "; green: different triangle; cyan: one side only; red: unexplained disagreement; magenta: NaN/Inf; grey: empty";
+  heatmap.attributes["rastercheck.heatmapQuantity"] = scale.key;
+  heatmap.attributes["rastercheck.test"] = report.testPath;
+  heatmap.attributes["rastercheck.reference"] = report.referencePath;
+}
+
+}  // namespace
+
+CompareReport compareImages(const Framebuffer& test, const std::string& testPath,
+                            const Framebuffer& ref, const std::string& refPath,
+                            const Thresholds& thresholds, Framebuffer* heatmap, int threads) {
+  if (test.width() != ref.width() || test.height() != ref.height()) {
+    throw badInput(testPath, "size " + std::to_string(test.width()) + "x" +
+                                 std::to_string(test.height()) + " differs from " + refPath + " (" +
+                                 std::to_string(ref.width()) + "x" + std::to_string(ref.height()) + ")");
   }
+  const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
+  const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
+  CompareReport report;
+  const std::vector<Family> families = collectFamilies(test, testPath, ref, refPath, thresholds, report.leftOut);
+  report.testPath = testPath;
+  report.referencePath = refPath;
+  report.width = test.width();
+  report.height = test.height();
+  report.thresholds = thresholds;
+  const std::size_t n = test.pixelCount();
+  const PlaneVector<PixelClass> classes = classifyPixels(testIds, refIds, report);
+  const Diagnostics diagnostics = diagnosticsOf(test, ref);
+  const bool bounded = diagnostics.bounded;
+  report.explained = diagnostics.explains();
+  report.edgeBand = report.explained ? diagnostics.bandTest + diagnostics.bandRef : 0.0;
+
+  std::vector<FamilyPlanes> planes(families.size());
+  // A pixel where some family holds a NaN or Inf, per family (they run in parallel), for the
+  // heatmap's colours only.
+  std::vector<PlaneVector<std::uint8_t>> nonFiniteOf(heatmap ? families.size() : 0);
+  if (heatmap) {
+    *heatmap = Framebuffer(test.width(), test.height());
+    for (std::size_t fi = 0; fi < families.size(); ++fi) planes[fi].error = heatmap->addFloat("error." + families[fi].name);
+    if (bounded) {
+      for (std::size_t fi = 0; fi < families.size(); ++fi) planes[fi].ratio = heatmap->addFloat("ratio." + families[fi].name);
+    }
+    float* ulpPlane = heatmap->addFloat("ulps.bary");
+    for (std::size_t fi = 0; fi < families.size(); ++fi) {
+      nonFiniteOf[fi].assign(n, 0);
+      planes[fi].nonFinite = nonFiniteOf[fi].data();
+      if (families[fi].kind == Family::kBary) planes[fi].ulps = ulpPlane;
+    }
+  }
+  const std::size_t sameTriangle = report.classCounts[int(PixelClass::kSameTriangle)];
+  report.families.resize(families.size());
+  // Each family on one thread. The heaviest (bary: three components) comes first.
+  // Below about a 256x256 image a thread costs more than it saves.
+  const int workers = n < (std::size_t(1) << 16) ? 1 : threads;
+  parallelFor(int(families.size()), workers, [&](int index) {
+    const std::size_t fi = std::size_t(index);
+    report.families[fi] = measureFamily(families[fi], classes, diagnostics, thresholds, sameTriangle, test.width(), planes[fi]);
+  });
+  const PlaneVector<Explanation> explanations =
+      report.explained ? explainDisagreements(test, ref, classes, diagnostics, report) : PlaneVector<Explanation>();
+  gate(report, thresholds);
+  if (heatmap) paintHeatmap(*heatmap, report, thresholds, classes, explanations, nonFiniteOf, bounded, workers);
   return report;
 }
 
