@@ -172,6 +172,153 @@ void countAgainstDefault(std::vector<BenchRow>& rows, std::size_t first) {
   }
 }
 
+namespace {
+
+// The reference in one build quality: its BVH built `runs` times, each build timed, then one
+// kept, with a framebuffer, for the rounds' traces (each timed into `trace`).
+struct BuiltReference {
+  ReferenceOptions options;
+  std::vector<double> build, trace;
+  std::unique_ptr<ReferenceTracer> tracer;
+  Framebuffer frame;
+};
+
+// The reference in each build quality measured, its builds timed one after another: the one
+// asked for and, unless it is low, the low-quality build beside it (built faster; traced faster
+// or slower by the scene). Each has traced one frame, which faults its memory in.
+std::vector<BuiltReference> buildReferences(const Scene& scene, const ReferenceOptions& asked, bool alsoLowBuild, int runs) {
+  std::vector<BuiltReference> references(alsoLowBuild && asked.build != EmbreeBuild::kLow ? 2 : 1);
+  references[0].options = asked;
+  if (references.size() == 2) {
+    references[1].options = asked;
+    references[1].options.build = EmbreeBuild::kLow;
+  }
+  for (BuiltReference& b : references) {
+    for (int r = 0; r < runs; ++r) {
+      const long long t0 = nowNanoseconds();
+      const ReferenceTracer built(scene, b.options);
+      b.build.push_back(millisecondsSince(t0));
+    }
+    b.tracer = std::make_unique<ReferenceTracer>(scene, b.options);
+    b.tracer->trace(b.frame);
+  }
+  return references;
+}
+
+// A setting's rasterizer, kept for the whole scene, the framebuffer it draws into, and its
+// timed frames with their stages, round by round.
+struct LiveSetting {
+  const BenchSetting* setting;
+  std::unique_ptr<Rasterizer> rasterizer;
+  Framebuffer* raster;
+  std::vector<double> times, transform, setup, bin, tiles;
+};
+
+// Every round traces each reference twice (the second trace timed) and gives every setting one
+// untimed frame (its caches warm again after the others) and one timed frame, the settings
+// taking their turns from a different one each round (round r starts with setting r).
+void runRounds(const Scene& scene, std::vector<BuiltReference>& references, std::vector<LiveSetting>& live, int runs,
+               const std::function<void(const std::string&)>& step) {
+  for (int r = 0; r < runs; ++r) {
+    step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
+    for (BuiltReference& b : references) {
+      b.tracer->trace(b.frame);
+      const long long start = nowNanoseconds();
+      b.tracer->trace(b.frame);
+      b.trace.push_back(millisecondsSince(start));
+    }
+    for (std::size_t k = 0; k < live.size(); ++k) {
+      LiveSetting& l = live[(k + std::size_t(r)) % live.size()];
+      l.rasterizer->render(scene, *l.raster);
+      const long long t0 = nowNanoseconds();
+      l.rasterizer->render(scene, *l.raster);
+      l.times.push_back(millisecondsSince(t0));
+      const StageTimes& stages = l.rasterizer->stageTimes();
+      l.transform.push_back(stages.transformMs);
+      l.setup.push_back(stages.setupMs);
+      l.bin.push_back(stages.binMs);
+      l.tiles.push_back(stages.tilesMs);
+    }
+  }
+}
+
+// A setting's row after the rounds: its frame drawn again (the other settings drew over it),
+// the default's EXR writes timed, its errors against `reference`, and last its memory floor,
+// which overwrites the frame's planes.
+BenchRow measuredRow(const Scene& scene, const RenderSettings& settings, LiveSetting& l,
+                     const std::vector<BuiltReference>& references, int runs) {
+  const BenchSetting& setting = *l.setting;
+  Framebuffer& raster = *l.raster;
+  l.rasterizer->render(scene, raster);
+  std::vector<double> exr;
+  if (setting.isDefault) {  // after every timed frame, so they run as they would without it
+    const TemporaryFile file;
+    for (int r = 0; r < std::min(runs, kExrRuns); ++r) {
+      const long long t0 = nowNanoseconds();
+      writeExr(raster, file.path);
+      exr.push_back(millisecondsSince(t0));
+    }
+  }
+  const Framebuffer& reference = references[0].frame;  // the errors are measured against it
+  const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr,
+                                             setting.raster.threads);
+  std::vector<double> floor;
+  for (int r = 0; r < runs; ++r) floor.push_back(writeOutPass(raster, std::uint32_t(r), setting.raster));
+  BenchRow row;
+  row.scene = scene.name;
+  row.setting = setting.name;
+  row.isDefault = setting.isDefault;
+  row.triangles = scene.mesh.triangleCount();
+  row.width = scene.camera.width();
+  row.height = scene.camera.height();
+  row.threads = resolveThreadCount(setting.raster.threads);
+  row.runs = runs;
+  row.rasterMs = median(l.times);
+  row.rasterMsMin = *std::min_element(l.times.begin(), l.times.end());
+  row.rasterMsMax = *std::max_element(l.times.begin(), l.times.end());
+  row.transformMs = median(l.transform);
+  row.setupMs = median(l.setup);
+  row.binMs = median(l.bin);
+  row.tilesMs = median(l.tiles);
+  row.transformRuns = l.transform;
+  row.setupRuns = l.setup;
+  row.binRuns = l.bin;
+  row.tilesRuns = l.tiles;
+  row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
+  row.storeFloorMs = median(floor);
+  row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
+  row.diagnostics = setting.raster.diagnostics;
+  row.cull = setting.raster.culling == Culling::kNone ? "none" : "auto";
+  row.referenceIsa = settings.reference.isa;
+  row.rasterRuns = l.times;
+  std::vector<ReferenceRuns> measured;
+  for (const BuiltReference& b : references) measured.push_back({embreeBuildName(b.options.build), b.build, b.trace});
+  countAgainstReference(row, measured);
+  row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
+  row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
+  row.baryMax = report.families[0].stats.max;
+  row.baryP999 = report.families[0].stats.p999;
+  row.disagreementFraction = report.disagreementFraction;
+  return row;
+}
+
+}  // namespace
+
+// Steady-state frames: each renderer keeps its framebuffer (and the rasterizer its working
+// memory) from one run to the next, as a renderer drawing frame after frame does; one untimed
+// frame first faults the memory in. Neither timing includes the RGB preview.
+//
+// The reference's BVH builds are timed first, one after another. Then everything else is timed
+// in rounds (runRounds). A slow spell of the machine (seconds long on a shared one) then falls
+// on the reference's trace and the settings alike instead of on all the runs of whichever it
+// met, so the medians and the ratios between them stay put. (Built in the rounds too, the BVH
+// took 183 to 220 ms at 1M triangles instead of 153 to 161, and the ratios counting the build
+// would have gained from it.) The settings take their turns from a different one each round:
+// in a fixed order, the first setting of every round, the default, had the widest spread of all
+// at 1M triangles (docs/report-format.md).
+// The settings that write the same channels draw into one framebuffer in turn (every frame
+// writes every pixel of every plane): two framebuffers per scene, not one per setting (a bench
+// of the default scenes peaked at 2.24 GB with one each, 1.0 GB with two).
 std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSettings& settings,
                                const std::vector<BenchSetting>& sweep, int runs, bool alsoLowBuild,
                                const std::function<void(const std::string&)>& step) {
@@ -179,56 +326,9 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
   for (const Scene& scene : scenes) {
     const LoadMeter meter;
     const std::size_t firstRow = rows.size();
-    // Steady-state frames: each renderer keeps its framebuffer (and the rasterizer its working
-    // memory) from one run to the next, as a renderer drawing frame after frame does; one
-    // untimed frame first faults the memory in. Neither timing includes the RGB preview.
-    //
-    // The reference's BVH builds are timed first, one after another. Then everything else is
-    // timed in rounds: each round traces the reference twice (the second trace timed) and gives
-    // every setting one untimed frame (its caches warm again after the others) and one timed
-    // frame. A slow spell of the machine (seconds long on a shared one) then falls on the
-    // reference's trace and the settings alike instead of on all the runs of whichever it met,
-    // so the medians and the ratios between them stay put. (Built in the rounds too, the BVH
-    // took 183 to 220 ms at 1M triangles instead of 153 to 161, and the ratios counting the
-    // build would have gained from it.)
-    // The settings take their turns from a different one each round (round r starts with
-    // setting r): in a fixed order, the first setting of every round, the default, had the
-    // widest spread of all at 1M triangles (docs/report-format.md).
-    // The settings that write the same channels draw into one framebuffer in turn (every
-    // frame writes every pixel of every plane): two framebuffers per scene, not one per setting
-    // (a bench of the default scenes peaked at 2.24 GB with one each, 1.0 GB with two).
     step(scene.name + ": reference builds");
-    // The reference in each build quality measured: the one asked for and, unless it is low,
-    // the low-quality build beside it (built faster; traced faster or slower by the scene).
-    struct Built {
-      ReferenceOptions options;
-      std::vector<double> build, trace;
-      std::unique_ptr<ReferenceTracer> tracer;
-      Framebuffer frame;
-    };
-    std::vector<Built> references(alsoLowBuild && settings.reference.build != EmbreeBuild::kLow ? 2 : 1);
-    references[0].options = settings.reference;
-    if (references.size() == 2) {
-      references[1].options = settings.reference;
-      references[1].options.build = EmbreeBuild::kLow;
-    }
-    for (Built& b : references) {
-      for (int r = 0; r < runs; ++r) {
-        const long long t0 = nowNanoseconds();
-        const ReferenceTracer built(scene, b.options);
-        b.build.push_back(millisecondsSince(t0));
-      }
-      b.tracer = std::make_unique<ReferenceTracer>(scene, b.options);
-      b.tracer->trace(b.frame);  // faults the memory in
-    }
-    const Framebuffer& reference = references[0].frame;  // the errors are measured against it
-    struct Live {
-      const BenchSetting* setting;
-      std::unique_ptr<Rasterizer> rasterizer;
-      Framebuffer* raster;
-      std::vector<double> times, transform, setup, bin, tiles;
-    };
-    std::vector<Live> live(sweep.size());
+    std::vector<BuiltReference> references = buildReferences(scene, settings.reference, alsoLowBuild, runs);
+    std::vector<LiveSetting> live(sweep.size());
     Framebuffer withDiagnostics, withoutDiagnostics;
     for (std::size_t i = 0; i < sweep.size(); ++i) {
       live[i].setting = &sweep[i];
@@ -236,84 +336,9 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
       live[i].raster = sweep[i].raster.diagnostics ? &withDiagnostics : &withoutDiagnostics;
       live[i].rasterizer->render(scene, *live[i].raster);  // faults the memory in
     }
-    for (int r = 0; r < runs; ++r) {
-      step(scene.name + ": round " + std::to_string(r + 1) + " of " + std::to_string(runs));
-      for (Built& b : references) {
-        b.tracer->trace(b.frame);
-        const long long start = nowNanoseconds();
-        b.tracer->trace(b.frame);
-        b.trace.push_back(millisecondsSince(start));
-      }
-      for (std::size_t k = 0; k < live.size(); ++k) {
-        Live& l = live[(k + std::size_t(r)) % live.size()];
-        l.rasterizer->render(scene, *l.raster);
-        const long long t0 = nowNanoseconds();
-        l.rasterizer->render(scene, *l.raster);
-        l.times.push_back(millisecondsSince(t0));
-        const StageTimes& stages = l.rasterizer->stageTimes();
-        l.transform.push_back(stages.transformMs);
-        l.setup.push_back(stages.setupMs);
-        l.bin.push_back(stages.binMs);
-        l.tiles.push_back(stages.tilesMs);
-      }
-    }
+    runRounds(scene, references, live, runs, step);
     step(scene.name + ": errors, EXR writing and memory floors");
-    for (Live& l : live) {
-      const BenchSetting& setting = *l.setting;
-      Framebuffer& raster = *l.raster;
-      l.rasterizer->render(scene, raster);  // its own frame again: the other settings drew over it
-      const std::vector<double>& times = l.times;
-      std::vector<double> exr;
-      if (setting.isDefault) {  // after every timed frame, so they run as they would without it
-        const TemporaryFile file;
-        for (int r = 0; r < std::min(runs, kExrRuns); ++r) {
-          const long long t0 = nowNanoseconds();
-          writeExr(raster, file.path);
-          exr.push_back(millisecondsSince(t0));
-        }
-      }
-      const CompareReport report = compareImages(raster, setting.name, reference, "reference", Thresholds{}, nullptr,
-                                                 setting.raster.threads);
-      // Last, since it overwrites the frame's planes.
-      std::vector<double> floor;
-      for (int r = 0; r < runs; ++r) floor.push_back(writeOutPass(raster, std::uint32_t(r), setting.raster));
-      BenchRow row;
-      row.scene = scene.name;
-      row.setting = setting.name;
-      row.isDefault = setting.isDefault;
-      row.triangles = scene.mesh.triangleCount();
-      row.width = scene.camera.width();
-      row.height = scene.camera.height();
-      row.threads = resolveThreadCount(setting.raster.threads);
-      row.runs = runs;
-      row.rasterMs = median(times);
-      row.rasterMsMin = *std::min_element(times.begin(), times.end());
-      row.rasterMsMax = *std::max_element(times.begin(), times.end());
-      row.transformMs = median(l.transform);
-      row.setupMs = median(l.setup);
-      row.binMs = median(l.bin);
-      row.tilesMs = median(l.tiles);
-      row.transformRuns = l.transform;
-      row.setupRuns = l.setup;
-      row.binRuns = l.bin;
-      row.tilesRuns = l.tiles;
-      row.exrWriteMs = exr.empty() ? -1.0 : median(exr);
-      row.storeFloorMs = median(floor);
-      row.rasterIsa = kernelIsaName(resolveKernelIsa(setting.raster.isa));
-      row.diagnostics = setting.raster.diagnostics;
-      row.cull = setting.raster.culling == Culling::kNone ? "none" : "auto";
-      row.referenceIsa = settings.reference.isa;
-      row.rasterRuns = times;
-      std::vector<ReferenceRuns> measured;
-      for (const Built& b : references) measured.push_back({embreeBuildName(b.options.build), b.build, b.trace});
-      countAgainstReference(row, measured);
-      row.trianglesPerSecond = double(row.triangles) / (row.rasterMs * 1e-3);
-      row.pixelsPerSecond = double(row.width) * row.height / (row.rasterMs * 1e-3);
-      row.baryMax = report.families[0].stats.max;
-      row.baryP999 = report.families[0].stats.p999;
-      row.disagreementFraction = report.disagreementFraction;
-      rows.push_back(row);
-    }
+    for (LiveSetting& l : live) rows.push_back(measuredRow(scene, settings, l, references, runs));
     countAgainstDefault(rows, firstRow);
     const std::optional<BenchLoad> load = meter.load();
     for (std::size_t i = firstRow; i < rows.size(); ++i) rows[i].load = load;
