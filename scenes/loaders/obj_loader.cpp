@@ -155,14 +155,15 @@ struct CornerHash {
   }
 };
 
-}  // namespace
-
-Mesh loadObj(const std::string& path, TriangleBudget budget) {
-  const PlaneVector<char> bytes = readLargeInputFile(path);
-  const std::string_view text(bytes.data(), bytes.size());
-  const std::vector<std::size_t> lines = checkStatements(text, path, budget);
+// What tinyobjloader read: positions, texture coordinates and normals, and the faces of each
+// shape as corner counts and corner indices.
+struct ParsedObj {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
+};
+
+ParsedObj parseObj(std::string_view text, const std::string& path) {
+  ParsedObj parsed;
   std::vector<tinyobj::material_t> materials;
   std::string warning, error;
   TextBuffer objText(text);
@@ -171,93 +172,120 @@ Mesh loadObj(const std::string& path, TriangleBudget budget) {
   std::istream materialStream(&noMaterials);
   tinyobj::MaterialStreamReader materialReader(materialStream);
   // Not triangulated (that is done below, polygon.h, so every face keeps its line); no colours.
-  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &objStream, &materialReader, false, false)) {
+  if (!tinyobj::LoadObj(&parsed.attrib, &parsed.shapes, &materials, &warning, &error, &objStream, &materialReader,
+                        false, false)) {
     while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
     throw badInput(path, "not a valid OBJ file: " + error);
   }
+  return parsed;
+}
 
-  std::size_t faceCount = 0;
-  for (const tinyobj::shape_t& shape : shapes) faceCount += shape.mesh.num_face_vertices.size();
-  const bool linesKnown = lines.size() == faceCount;
-  std::size_t face = 0;
-  const auto where = [&](std::size_t f) {
+// Where face f (counted from 0 over every shape) is: its line where checkStatements found one
+// line per face, else its number.
+struct FacePlaces {
+  std::string path;
+  std::vector<std::size_t> lines;
+  bool linesKnown;
+  std::string operator()(std::size_t f) const {
     return linesKnown ? path + ":" + std::to_string(lines[f]) : path + ": face " + std::to_string(f + 1);
-  };
+  }
+};
+
+// Calls fn(face, corners, arity) for every face of every shape, in file order: corners points
+// at the face's first corner index.
+template <typename Fn>
+void forEachFace(const std::vector<tinyobj::shape_t>& shapes, Fn&& fn) {
+  std::size_t face = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    std::size_t offset = 0;
+    for (const unsigned char arity : shape.mesh.num_face_vertices) {
+      fn(face++, &shape.mesh.indices[offset], unsigned(arity));
+      offset += arity;
+    }
+  }
+}
+
+// The attributes every corner of every face has. An attribute is kept when every corner has it;
+// a file where only some faces have it is refused, naming the first face without it.
+struct CornerAttributes {
+  bool uv = false, normal = false;
+};
+
+CornerAttributes cornerAttributes(const std::vector<tinyobj::shape_t>& shapes, const FacePlaces& where) {
+  CornerAttributes any;
+  for (const tinyobj::shape_t& shape : shapes) {
+    for (const tinyobj::index_t& index : shape.mesh.indices) {
+      any.uv = any.uv || index.texcoord_index >= 0;
+      any.normal = any.normal || index.normal_index >= 0;
+    }
+  }
+  forEachFace(shapes, [&](std::size_t face, const tinyobj::index_t* corners, unsigned arity) {
+    for (unsigned k = 0; k < arity; ++k) {
+      const tinyobj::index_t& index = corners[k];
+      if ((any.uv && index.texcoord_index < 0) || (any.normal && index.normal_index < 0)) {
+        throw badInput(where(face), std::string("this face lacks the ") +
+                                        (any.uv && index.texcoord_index < 0 ? "texture coordinate (vt)" : "normal (vn)") +
+                                        " index that other faces have");
+      }
+    }
+  });
+  return any;
+}
+
+}  // namespace
+
+Mesh loadObj(const std::string& path, TriangleBudget budget) {
+  const PlaneVector<char> bytes = readLargeInputFile(path);
+  const std::string_view text(bytes.data(), bytes.size());
+  std::vector<std::size_t> lines = checkStatements(text, path, budget);
+  const ParsedObj parsed = parseObj(text, path);
+  const tinyobj::attrib_t& attrib = parsed.attrib;
+  std::size_t faceCount = 0;
+  for (const tinyobj::shape_t& shape : parsed.shapes) faceCount += shape.mesh.num_face_vertices.size();
+  const bool linesKnown = lines.size() == faceCount;
+  const FacePlaces where{path, std::move(lines), linesKnown};
+  const CornerAttributes all = cornerAttributes(parsed.shapes, where);
 
   const int vertexCount = int(attrib.vertices.size() / 3);
   const int uvCount = int(attrib.texcoords.size() / 2);
   const int normalCount = int(attrib.normals.size() / 3);
-  // An attribute is kept when every corner of every face has it; a file where only some
-  // faces have it is refused, naming the first face without it.
-  bool anyUv = false, anyNormal = false;
-  for (const tinyobj::shape_t& shape : shapes) {
-    for (const tinyobj::index_t& index : shape.mesh.indices) {
-      anyUv = anyUv || index.texcoord_index >= 0;
-      anyNormal = anyNormal || index.normal_index >= 0;
-    }
-  }
-  {
-    std::size_t f = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
-      std::size_t offset = 0;
-      for (const unsigned char arity : shape.mesh.num_face_vertices) {
-        for (unsigned k = 0; k < arity; ++k) {
-          const tinyobj::index_t& index = shape.mesh.indices[offset + k];
-          if ((anyUv && index.texcoord_index < 0) || (anyNormal && index.normal_index < 0)) {
-            throw badInput(where(f), std::string("this face lacks the ") +
-                                         (anyUv && index.texcoord_index < 0 ? "texture coordinate (vt)" : "normal (vn)") +
-                                         " index that other faces have");
-          }
-        }
-        offset += arity;
-        ++f;
-      }
-    }
-  }
-  const bool allUv = anyUv, allNormal = anyNormal;
-
   Mesh mesh;
   HugeVector<float> uvs, normals;
+  // A corner is its (v, vt, vn): corners that share all three share a vertex of the mesh.
   std::unordered_map<CornerKey, unsigned, CornerHash> corners;
-  for (const tinyobj::shape_t& shape : shapes) {
-    std::size_t offset = 0;
-    for (const unsigned char arity : shape.mesh.num_face_vertices) {
-      if (arity < 3) throw badInput(where(face), "face has " + std::to_string(arity) + " vertices; 3 or more needed");
-      std::vector<unsigned> polygon;
-      for (unsigned k = 0; k < arity; ++k) {
-        const tinyobj::index_t& index = shape.mesh.indices[offset + k];
-        if (index.vertex_index < 0 || index.vertex_index >= vertexCount) {
-          throw badInput(where(face), "vertex index out of range (the file has " + std::to_string(vertexCount) +
-                                          " vertices; indices start at 1, negative ones count back)");
-        }
-        if ((allUv && index.texcoord_index >= uvCount) || (allNormal && index.normal_index >= normalCount)) {
-          throw badInput(where(face), "texture coordinate or normal index out of range");
-        }
-        const CornerKey key{index.vertex_index, allUv ? index.texcoord_index : -1,
-                            allNormal ? index.normal_index : -1};
-        auto [it, inserted] = corners.try_emplace(key, unsigned(mesh.positions.size()));
-        if (inserted) {
-          const float* p = &attrib.vertices[3 * std::size_t(key.v)];
-          mesh.positions.push_back({p[0], p[1], p[2]});
-          if (allUv) uvs.insert(uvs.end(), &attrib.texcoords[2 * std::size_t(key.vt)], &attrib.texcoords[2 * std::size_t(key.vt) + 2]);
-          if (allNormal) normals.insert(normals.end(), &attrib.normals[3 * std::size_t(key.vn)], &attrib.normals[3 * std::size_t(key.vn) + 3]);
-        }
-        polygon.push_back(it->second);
+  forEachFace(parsed.shapes, [&](std::size_t face, const tinyobj::index_t* faceCorners, unsigned arity) {
+    if (arity < 3) throw badInput(where(face), "face has " + std::to_string(arity) + " vertices; 3 or more needed");
+    std::vector<unsigned> polygon;
+    for (unsigned k = 0; k < arity; ++k) {
+      const tinyobj::index_t& index = faceCorners[k];
+      if (index.vertex_index < 0 || index.vertex_index >= vertexCount) {
+        throw badInput(where(face), "vertex index out of range (the file has " + std::to_string(vertexCount) +
+                                        " vertices; indices start at 1, negative ones count back)");
       }
-      if (arity == 3) {
-        mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
-      } else {
-        std::vector<glm::dvec3> at(arity);
-        for (unsigned k = 0; k < arity; ++k) at[k] = glm::dvec3(mesh.positions[polygon[k]]);
-        for (const auto& [a, b, c] : triangulatePolygon(at)) mesh.triangles.push_back({polygon[a], polygon[b], polygon[c]});
+      if ((all.uv && index.texcoord_index >= uvCount) || (all.normal && index.normal_index >= normalCount)) {
+        throw badInput(where(face), "texture coordinate or normal index out of range");
       }
-      offset += arity;
-      ++face;
+      const CornerKey key{index.vertex_index, all.uv ? index.texcoord_index : -1, all.normal ? index.normal_index : -1};
+      auto [it, inserted] = corners.try_emplace(key, unsigned(mesh.positions.size()));
+      if (inserted) {
+        const float* p = &attrib.vertices[3 * std::size_t(key.v)];
+        mesh.positions.push_back({p[0], p[1], p[2]});
+        if (all.uv) uvs.insert(uvs.end(), &attrib.texcoords[2 * std::size_t(key.vt)], &attrib.texcoords[2 * std::size_t(key.vt) + 2]);
+        if (all.normal) normals.insert(normals.end(), &attrib.normals[3 * std::size_t(key.vn)], &attrib.normals[3 * std::size_t(key.vn) + 3]);
+      }
+      polygon.push_back(it->second);
     }
-  }
+    if (arity == 3) {
+      mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
+    } else {
+      std::vector<glm::dvec3> at(arity);
+      for (unsigned k = 0; k < arity; ++k) at[k] = glm::dvec3(mesh.positions[polygon[k]]);
+      for (const auto& [a, b, c] : triangulatePolygon(at)) mesh.triangles.push_back({polygon[a], polygon[b], polygon[c]});
+    }
+  });
   if (mesh.triangles.empty()) throw badInput(path, "no faces");
-  if (allUv) mesh.attributes.push_back({"uv", 2, std::move(uvs)});
-  if (allNormal) mesh.attributes.push_back({"normal", 3, std::move(normals)});
+  if (all.uv) mesh.attributes.push_back({"uv", 2, std::move(uvs)});
+  if (all.normal) mesh.attributes.push_back({"normal", 3, std::move(normals)});
   validateMesh(mesh, path);
   return mesh;
 }
