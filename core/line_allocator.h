@@ -1,7 +1,7 @@
 // Allocator for buffers read and written in 32-byte vectors: storage aligned to a 64-byte
 // cache line. From malloc's 16-byte alignment, half of such accesses straddle two lines; the
 // tiles' staging rows and packed records, and the reference's staging strips, are read that
-// way (docs/rasterizer.md, "Buffers aligned to cache lines").
+// way (docs/rasterizer-speed.md, "Buffers aligned to cache lines").
 #pragma once
 
 #include <cstddef>

@@ -61,7 +61,7 @@ RC_KERNEL_INLINE i32x8 nonNegative(const LaneVector& v) {
 // caller's buffers must reach that far): the row loop's exit, at a trip count that varies from
 // set-up to set-up, cost more than the rows this adds. At 1M triangles most set-ups have such
 // boxes (2.4 row chunks on average), and the tiles took 13.4 down to 12.5 ms a frame
-// (docs/rasterizer.md, "Fixed row counts").
+// (docs/rasterizer-speed.md, "Fixed row counts").
 template <typename Lane, bool kVectorSteps, std::size_t kWidth, typename Fn>
 RC_KERNEL_INLINE void coverRows(const EdgeFunctions& e, int bits, int xa, int ya, int xb, int yb, Fn&& fn) {
   typedef Lane LaneVector __attribute__((vector_size(kLanes * sizeof(Lane))));

@@ -31,7 +31,7 @@ namespace rc::kernel {
 // streamStagedRow is that copy-out: plane p's staged row, stage + p * stride, to planes[p] +
 // rowStart (null planes are not written), n values each. Whole tile rows take the AVX2 build's
 // inline 32-byte stores (streamRowOf): frames at 1k triangles 5 to 8% faster than with a call
-// per row and plane (docs/rasterizer.md, "The memory floor").
+// per row and plane (docs/rasterizer-speed.md, "The memory floor").
 template <bool kAvx2>
 RC_KERNEL_INLINE void streamStagedRow(std::uint32_t* const* planes, int count, const std::uint32_t* stage,
                                       std::size_t stride, std::size_t rowStart, int n) {

@@ -5,7 +5,7 @@
 // sequence, which the hardware prefetcher follows, and prefetching there is pure cost. A
 // scan's order (the Stanford bunny's) jumps across the mesh from one triangle to the next, and
 // once the vertex arrays outgrow the core's L2 cache nearly every jump misses it
-// (docs/rasterizer.md, "Vertex order").
+// (docs/rasterizer-speed.md, "Vertex order").
 #pragma once
 
 #include <cstddef>
