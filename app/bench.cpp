@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <tuple>
+#include <utility>
 #include <unistd.h>
 
 #include "compare/compare.h"
@@ -46,6 +48,18 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// The least and the greatest of the rounds' own ratios, numerator[r] / denominator[r], each
+// pair timed in the same round; 0 and 0 without a round.
+std::pair<double, double> roundRatioBounds(const std::vector<double>& numerator, const std::vector<double>& denominator) {
+  double least = 0, greatest = 0;
+  for (std::size_t r = 0; r < std::min(numerator.size(), denominator.size()); ++r) {
+    const double ratio = numerator[r] / denominator[r];
+    least = r == 0 ? ratio : std::min(least, ratio);
+    greatest = r == 0 ? ratio : std::max(greatest, ratio);
+  }
+  return {least, greatest};
 }
 
 }  // namespace
@@ -147,11 +161,8 @@ void countAgainstReference(BenchRow& row, const std::vector<ReferenceRuns>& refe
   row.referenceTraceMs = fasterTrace.traceMs;
   row.speedup = row.referenceTraceMs / row.rasterMs;
   row.traceRuns = references[best.fasterTrace].traceRuns;
-  for (std::size_t r = 0; r < row.rasterRuns.size(); ++r) {  // each round's trace over its own frame
-    const double ratio = row.traceRuns[r] / row.rasterRuns[r];
-    row.speedupMin = r == 0 ? ratio : std::min(row.speedupMin, ratio);
-    row.speedupMax = r == 0 ? ratio : std::max(row.speedupMax, ratio);
-  }
+  // Each round's trace over its own frame.
+  std::tie(row.speedupMin, row.speedupMax) = roundRatioBounds(row.traceRuns, row.rasterRuns);
   row.speedupWithBuild = (smallerSum.buildMs + smallerSum.traceMs) / row.rasterMs;
   row.speedupWithBuildQuality = smallerSum.build;
 }
@@ -160,15 +171,12 @@ void countAgainstDefault(std::vector<BenchRow>& rows, std::size_t first) {
   const auto isDefault = [](const BenchRow& r) { return r.isDefault; };
   const auto found = std::find_if(rows.begin() + std::ptrdiff_t(first), rows.end(), isDefault);
   if (found == rows.end()) return;
-  const BenchRow def = *found;
+  const BenchRow& def = *found;  // the loop writes only the ratios, none of which it reads
   for (std::size_t i = first; i < rows.size(); ++i) {
     BenchRow& row = rows[i];
     row.overDefault = row.rasterMs / def.rasterMs;
-    for (std::size_t r = 0; r < row.rasterRuns.size(); ++r) {  // each round's frame over the default's
-      const double ratio = row.rasterRuns[r] / def.rasterRuns[r];
-      row.overDefaultMin = r == 0 ? ratio : std::min(row.overDefaultMin, ratio);
-      row.overDefaultMax = r == 0 ? ratio : std::max(row.overDefaultMax, ratio);
-    }
+    // Each round's frame over the default's of the same round.
+    std::tie(row.overDefaultMin, row.overDefaultMax) = roundRatioBounds(row.rasterRuns, def.rasterRuns);
   }
 }
 

@@ -384,12 +384,12 @@ FamilyReport measureFamily(const Family& f, const PlaneVector<PixelClass>& class
 // band, or a depth tie (with the other surface, or with a clipping plane), else unexplained;
 // counted into the report with the first unexplained pixel.
 PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Framebuffer& ref,
+                                              const PlaneVector<std::uint32_t>& testIds,
+                                              const PlaneVector<std::uint32_t>& refIds,
                                               const PlaneVector<PixelClass>& classes, const Diagnostics& d,
                                               CompareReport& report) {
   const std::size_t n = classes.size();
   const int width = test.width();
-  const auto& testIds = test.find(channels::kTriangleId)->uints;
-  const auto& refIds = ref.find(channels::kTriangleId)->uints;
   PlaneVector<Explanation> explanations(n, Explanation::kUnexplained);
   const float* depthTest = test.find(channels::kDepth)->floats.data();
   const float* depthRef = ref.find(channels::kDepth)->floats.data();
@@ -565,8 +565,9 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     const std::size_t fi = std::size_t(index);
     report.families[fi] = measureFamily(families[fi], classes, diagnostics, thresholds, sameTriangle, test.width(), planes[fi]);
   });
-  const PlaneVector<Explanation> explanations =
-      report.explained ? explainDisagreements(test, ref, classes, diagnostics, report) : PlaneVector<Explanation>();
+  const PlaneVector<Explanation> explanations = report.explained
+                                                    ? explainDisagreements(test, ref, testIds, refIds, classes, diagnostics, report)
+                                                    : PlaneVector<Explanation>();
   gate(report, thresholds);
   if (heatmap) paintHeatmap(*heatmap, report, thresholds, classes, explanations, nonFiniteOf, bounded, workers);
   return report;
