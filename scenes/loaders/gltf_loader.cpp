@@ -54,6 +54,37 @@ bool finiteMatrix(const glm::dmat4& m) {
   return true;
 }
 
+// The triangles of a primitive's vertex order (its indices, or 0, 1, 2, ... without), each
+// with its vertices in the order glTF 2.0 defines (3.7.2.1, "Topology types"), since a
+// triangle's barycentrics follow its vertex order: triangle i of a list is (v_3i, v_3i+1,
+// v_3i+2), of a strip (v_i, v_i+1+i%2, v_i+2-i%2), which keeps every triangle's winding, and
+// of a fan (v_i+1, v_i+2, v_0). A count the topology cannot take is refused, as the
+// specification requires: a list's must be a non-zero multiple of 3, a strip's or fan's 3 or more.
+HugeVector<glm::uvec3> assembleTriangles(const HugeVector<unsigned>& order, int mode, const std::string& where) {
+  const std::size_t n = order.size();
+  HugeVector<glm::uvec3> triangles;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (n == 0 || n % 3 != 0) {
+      throw badInput(where, std::to_string(n) + " vertices do not make whole triangles (mode TRIANGLES takes a non-zero multiple of 3)");
+    }
+    triangles.reserve(n / 3);
+    for (std::size_t i = 0; i < n; i += 3) triangles.push_back({order[i], order[i + 1], order[i + 2]});
+    return triangles;
+  }
+  const bool strip = mode == TINYGLTF_MODE_TRIANGLE_STRIP;
+  if (n < 3) {
+    throw badInput(where, std::to_string(n) + " vertices are too few for mode " +
+                              (strip ? "TRIANGLE_STRIP" : "TRIANGLE_FAN") + " (it takes 3 or more)");
+  }
+  triangles.reserve(n - 2);
+  for (std::size_t i = 0; i + 2 < n; ++i) {
+    const std::size_t odd = i % 2;
+    triangles.push_back(strip ? glm::uvec3(order[i], order[i + 1 + odd], order[i + 2 - odd])
+                              : glm::uvec3(order[i + 1], order[i + 2], order[0]));
+  }
+  return triangles;
+}
+
 // Extensions a file may require that rastercheck can honour: KHR_mesh_quantization,
 // EXT_meshopt_compression and EXT_mesh_gpu_instancing are read; the
 // others concern materials, textures and lights, which rastercheck never uses (it interpolates
@@ -162,21 +193,7 @@ struct Walker {
     } else {
       for (unsigned i = 0; i < part.positions.size(); ++i) order.push_back(i);
     }
-    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    part.triangles.reserve(mode == TINYGLTF_MODE_TRIANGLES ? order.size() / 3 : order.size());
-    for (std::size_t i = 0; i + 2 < order.size();) {
-      if (mode == TINYGLTF_MODE_TRIANGLES) {
-        part.triangles.push_back({order[i], order[i + 1], order[i + 2]});
-        i += 3;
-      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // every other triangle flips order
-        part.triangles.push_back(i % 2 ? glm::uvec3(order[i + 1], order[i], order[i + 2])
-                                       : glm::uvec3(order[i], order[i + 1], order[i + 2]));
-        ++i;
-      } else {  // fan
-        part.triangles.push_back({order[0], order[i + 1], order[i + 2]});
-        ++i;
-      }
-    }
+    part.triangles = assembleTriangles(order, primitive.mode, where);
     return part;
   }
 
@@ -433,9 +450,12 @@ struct Walker {
       std::vector<Mesh> parts;
       std::size_t triangles = 0;
       for (std::size_t i = 0; i < primitives.size(); ++i) {
-        const int mode = primitives[i].mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitives[i].mode;
-        if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;  // points, lines
+        const int mode = primitives[i].mode;  // tinygltf gives TRIANGLES where the file has no mode
         const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
+        if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+          throw badInput(at + ".mode", std::to_string(mode) + " is not a glTF topology (0 to 6)");
+        }
+        if (mode < TINYGLTF_MODE_TRIANGLES) continue;  // points and lines: no surface
         parts.push_back(readPrimitive(primitives[i], weights, at));
         if (skinned) applySkin(node.skin, primitives[i], parts.back(), at);
         triangles += parts.back().triangleCount();

@@ -283,7 +283,7 @@ TEST(GltfLoader, SparseAccessorsReplaceTheElementsTheyName) {
   const int indices = b.view(bytesOf<std::uint16_t>({1, 3}));
   const int values = b.view(bytesOf<float>({2, 0, 0, 1, 1, 0}));
   b.accessor(denseVec3(base, 4, 5126, sparse(2, indices, 5123, values)));
-  Mesh mesh = loadGltf(dir.write("sparse.gltf", b.text(R"("attributes": {"POSITION": 0})"))).mesh;
+  Mesh mesh = loadGltf(dir.write("sparse.gltf", b.text(R"("attributes": {"POSITION": 0}, "mode": 6)"))).mesh;  // a fan of 4
   expectPositions(mesh, {{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "sparse over a buffer view");
 
   // Without a bufferView the accessor is zeros, which the sparse values then replace.
@@ -294,6 +294,85 @@ TEST(GltfLoader, SparseAccessorsReplaceTheElementsTheyName) {
   mesh = loadGltf(dir.write("zeros.gltf", z.text(R"("attributes": {"POSITION": 0})"))).mesh;
   expectPositions(mesh, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "sparse over zeros");
   EXPECT_EQ(mesh.triangleCount(), 1u);
+}
+
+// Each triangle's vertex indices, as a list of triples.
+std::vector<std::array<unsigned, 3>> trianglesOf(const Mesh& mesh) {
+  std::vector<std::array<unsigned, 3>> out;
+  for (const glm::uvec3& t : mesh.triangles) out.push_back({t.x, t.y, t.z});
+  return out;
+}
+
+// Twice the signed area of a triangle's projection on the xy plane (> 0: counter-clockwise).
+double signedAreaXy(const Mesh& mesh, const glm::uvec3& t) {
+  const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// A primitive of `mode` over `positions` (x, y pairs at z = 0), indexed by `indices` if any.
+std::string topologyGltf(int mode, std::initializer_list<float> xy, std::initializer_list<std::uint16_t> indices = {}) {
+  GltfBuilder b;
+  std::vector<float> xyz;
+  for (auto it = xy.begin(); it != xy.end(); it += 2) xyz.insert(xyz.end(), {it[0], it[1], 0.0f});
+  std::string bytes(xyz.size() * sizeof(float), '\0');
+  std::memcpy(bytes.data(), xyz.data(), bytes.size());
+  b.accessor(denseVec3(b.view(bytes), int(xyz.size() / 3)));
+  std::string primitive = R"("attributes": {"POSITION": 0}, "mode": )" + std::to_string(mode);
+  if (indices.size() > 0) {
+    b.accessor(dense(b.view(bytesOf<std::uint16_t>(indices)), int(indices.size()), "SCALAR", 5123));
+    primitive += R"(, "indices": 1)";
+  }
+  return b.text(primitive);
+}
+
+// glTF 2.0, 3.7.2.1: strip triangle i is (v_i, v_i+1+i%2, v_i+2-i%2), fan triangle i is
+// (v_i+1, v_i+2, v_0). The barycentrics follow a triangle's vertex order, so a renderer that
+// assembles them as OpenGL does (strip (v_i+1, v_i, v_i+2) on odd i, fan (v_0, v_i+1, v_i+2))
+// writes the same surface with its barycentric channels permuted.
+TEST(GltfLoader, StripsAndFansMakeTheSpecificationsTrianglesInItsVertexOrder) {
+  TempDir dir;
+  using Triangles = std::vector<std::array<unsigned, 3>>;
+  // A zigzag strip of four triangles, counter-clockwise seen from +z.
+  const Mesh strip = loadGltf(dir.write("strip.gltf", topologyGltf(5, {0, 0, 1, 0, 0, 1, 1, 1, 0, 2, 1, 2}))).mesh;
+  EXPECT_EQ(trianglesOf(strip), (Triangles{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {3, 5, 4}}));
+  for (const glm::uvec3& t : strip.triangles) EXPECT_GT(signedAreaXy(strip, t), 0.0) << "every strip triangle keeps the winding";
+  // Indexed, as the Khronos MeshPrimitiveModes sample draws its hexagon: indices 2 3 1 4 6 5.
+  const std::initializer_list<float> hexagon = {0, 0, 1, -0.5f, 1, 0.5f, 0, 1, -1, 0.5f, -1, -0.5f, 0, -1};
+  const Mesh indexed = loadGltf(dir.write("indexed.gltf", topologyGltf(5, hexagon, {2, 3, 1, 4, 6, 5}))).mesh;
+  EXPECT_EQ(trianglesOf(indexed), (Triangles{{2, 3, 1}, {3, 4, 1}, {1, 4, 6}, {4, 5, 6}}));
+  for (const glm::uvec3& t : indexed.triangles) EXPECT_GT(signedAreaXy(indexed, t), 0.0);
+  // A fan around vertex 0, closed on vertex 1, and the same fan's first triangles without indices.
+  const Mesh fan = loadGltf(dir.write("fan.gltf", topologyGltf(6, hexagon, {0, 1, 2, 3, 4, 5, 6, 1}))).mesh;
+  EXPECT_EQ(trianglesOf(fan), (Triangles{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}, {4, 5, 0}, {5, 6, 0}, {6, 1, 0}}));
+  for (const glm::uvec3& t : fan.triangles) EXPECT_GT(signedAreaXy(fan, t), 0.0);
+  const Mesh plain = loadGltf(dir.write("plain.gltf", topologyGltf(6, hexagon))).mesh;
+  EXPECT_EQ(trianglesOf(plain), (Triangles{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}, {4, 5, 0}, {5, 6, 0}}));
+  // A list without a mode is TRIANGLES.
+  const Mesh list = loadGltf(dir.write("list.gltf", topologyGltf(4, hexagon, {0, 1, 2, 0, 2, 3}))).mesh;
+  EXPECT_EQ(trianglesOf(list), (Triangles{{0, 1, 2}, {0, 2, 3}}));
+}
+
+TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
+  TempDir dir;
+  const std::initializer_list<float> square = {0, 0, 1, 0, 1, 1, 0, 1};
+  const auto refused = [&](const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+    const std::string path = dir.write(name, text);
+    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, fragments, name);
+  };
+  refused("four.gltf", topologyGltf(4, square),
+          {"four.gltf: meshes[0].primitives[0]: 4 vertices do not make whole triangles", "multiple of 3"});
+  refused("seven.gltf", topologyGltf(4, square, {0, 1, 2, 0, 2, 3, 1}), {"meshes[0].primitives[0]", "7 vertices"});
+  refused("short-strip.gltf", topologyGltf(5, square, {0, 1}),
+          {"meshes[0].primitives[0]: 2 vertices are too few for mode TRIANGLE_STRIP (it takes 3 or more)"});
+  refused("short-fan.gltf", topologyGltf(6, square, {3, 2}), {"2 vertices are too few for mode TRIANGLE_FAN"});
+  refused("mode7.gltf", topologyGltf(7, square), {"mode7.gltf: meshes[0].primitives[0].mode: 7 is not a glTF topology (0 to 6)"});
+  refused("negative.gltf", topologyGltf(-1, square), {"primitives[0].mode: -1 is not a glTF topology"});
+  // Points and lines carry no surface and are passed over, whatever their count.
+  GltfBuilder b;
+  b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0})), 4));
+  const std::string mixed = R"("attributes": {"POSITION": 0}, "mode": 1}, {"attributes": {"POSITION": 0}, "mode": 4, "indices": 1)";
+  b.accessor(dense(b.view(bytesOf<std::uint16_t>({0, 1, 2})), 3, "SCALAR", 5123));
+  EXPECT_EQ(loadGltf(dir.write("lines.gltf", b.text(mixed))).mesh.triangleCount(), 1u);
 }
 
 TEST(GltfLoader, BadSparseStorageIsRefusedNamingItsPlace) {
