@@ -112,6 +112,14 @@ TEST(BadInput, ObjFiles) {
                                     " --max-triangles 1");
   EXPECT_EQ(limit.exitCode, 3) << limit.output;
   EXPECT_NE(limit.output.find("quad.obj:5: this face takes the scene past 1 triangles"), std::string::npos) << limit.output;
+  // A built-in scene is made whole, then held to both limits.
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"blob:tris=100000 --max-triangles 1000", "blob:tris=100000: 100488 triangles exceed --max-triangles 1000"},
+           {"cube --size 600x400 --max-image-side 512", "cube: image 600x400 exceeds --max-image-side 512"}}) {
+    const Outcome r = rastercheck("scenes " + args);
+    EXPECT_EQ(r.exitCode, 3) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
   // CR-only line endings (classic Mac OS) are line endings, as tinyobjloader reads them: the
   // file loads, and a bad value after a lone CR is found on the line the parser reads it from.
   EXPECT_EQ(rastercheck("check -q " + dir.write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r")).exitCode, 0);
@@ -198,10 +206,12 @@ std::size_t endOfHeader(const std::string& bytes) {
 
 std::string readAll(const std::string& path) { return rc::testing::readFile(path); }
 
-void writeHalfExr(const std::string& path) {
+// A 4x4 EXR with HALF values; `sampling` > 1 stores bary.b0 at every sampling-th pixel each way.
+void writeHalfExr(const std::string& path, int sampling = 1) {
   Imf::Header header(4, 4);
   for (const char* name : {"tri.id", "bary.b0", "bary.b1", "bary.b2", "depth.z"}) {
-    header.channels().insert(name, Imf::Channel(std::string(name) == "tri.id" ? Imf::UINT : Imf::HALF));
+    const int s = std::string(name) == "bary.b0" ? sampling : 1;
+    header.channels().insert(name, Imf::Channel(std::string(name) == "tri.id" ? Imf::UINT : Imf::HALF, s, s));
   }
   Imf::OutputFile file(path.c_str(), header);
   std::vector<std::uint32_t> ids(16, 0);
@@ -209,7 +219,8 @@ void writeHalfExr(const std::string& path) {
   Imf::FrameBuffer slices;
   slices.insert("tri.id", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(ids.data()), 4, 16));
   for (const char* name : {"bary.b0", "bary.b1", "bary.b2", "depth.z"}) {
-    slices.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data()), 2, 8));
+    const int s = std::string(name) == "bary.b0" ? sampling : 1;
+    slices.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data()), 2, 8, s, s));
   }
   file.setFrameBuffer(slices);
   file.writePixels(4);
@@ -256,14 +267,22 @@ TEST(BadInput, ExrFilesGivenToCompare) {
   const std::size_t boxSize = fixedSize.find("box2i") + std::strlen("box2i") + 1;
   const std::int32_t seventeen = 17;
   std::memcpy(fixedSize.data() + boxSize, &seventeen, 4);
+  // A preview attribute of 1x2 pixels (16 bytes with its size fields) that declares 12 bytes,
+  // added at the header's end; the offsets after it no longer matter, since it is refused first.
+  std::string preview = bytes;
+  const std::int32_t previewFields[3] = {12, 1, 2};
+  std::string thumb = std::string("thumb\0preview\0", 14) + std::string(reinterpret_cast<const char*>(previewFields), 12) +
+                      std::string(8, '\x7F');
+  preview.insert(table - 1, thumb);
   std::string inverted = bytes;
   const std::int32_t backwards[4] = {10, 10, 0, 0};
   std::memcpy(inverted.data() + dw, backwards, 16);
   writeHalfExr(dir.file("half.exr"));
+  writeHalfExr(dir.file("subsampled.exr"), 2);
   ASSERT_EQ(rastercheck("render sphere --size 32x24 -o " + dir.file("sphere.exr")).exitCode, 0);
   ASSERT_EQ(rastercheck("render cube --size 24x32 -o " + dir.file("portrait.exr")).exitCode, 0);
 
-  const struct { std::string file; int code; const char* fragment; } cases[] = {
+  const struct { std::string file; int code; std::string fragment; } cases[] = {
       {dir.write("zero.exr", ""), 3, "zero.exr"},
       {dir.write("truncated.exr", bytes.substr(0, table + 20)), 3, "truncated.exr"},
       {dir.write("header-only.exr", bytes.substr(0, table - 30)), 3, "header-only.exr"},
@@ -273,9 +292,12 @@ TEST(BadInput, ExrFilesGivenToCompare) {
       {dir.write("attribute.exr", attribute), 3, "attribute.exr: header attribute 'pixelAspectRatio' at byte"},
       {dir.write("chlist.exr", chlist), 3, "chlist.exr: header attribute 'channels'"},
       {dir.write("fixed.exr", fixedSize), 3, "fixed.exr: header attribute 'dataWindow'"},
+      {dir.write("preview.exr", preview), 3, "preview.exr: header attribute 'thumb' at byte " + std::to_string(table - 1) +
+                                                 ": preview image does not match its declared size"},
       {dir.write("implausible.exr", implausible), 3, "implausible.exr: dataWindow: declares"},
       {dir.write("budget.exr", budget), 3, "budget.exr"},  // OpenEXR (chunk table) or our 4 GiB limit
       {dir.file("half.exr"), 3, "half.exr: channel bary.b0"},
+      {dir.file("subsampled.exr"), 3, "subsampled.exr: channel bary.b0: subsampled channels are not supported"},
       {dir.file("sphere.exr"), 3, "attr.normal"},
       {dir.file("portrait.exr"), 3, "differs"},
       {dir.file("absent.exr"), 4, "absent.exr"},

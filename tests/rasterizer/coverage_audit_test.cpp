@@ -30,6 +30,8 @@ std::vector<Setting> settings() {
   RasterOptions twice;
   twice.precision = Precision::kDouble;
   all.push_back({"double", twice});
+  twice.subpixelBits = 0;  // the audit's double records on the exact, unsnapped triangles
+  all.push_back({"double, no snapping", twice});
   RasterOptions affine;
   affine.interpolation = Interpolation::kAffine;
   affine.culling = Culling::kNone;

@@ -375,6 +375,71 @@ TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
   EXPECT_EQ(loadGltf(dir.write("lines.gltf", b.text(mixed))).mesh.triangleCount(), 1u);
 }
 
+TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
+  TempDir dir;
+  const std::string triangle = bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const auto refused = [&](const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+    const std::string path = dir.write(name, text);
+    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, fragments, name);
+  };
+  {  // NORMAL with two elements for three positions
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 1, 0, 0, 1})), 2));
+    refused("normals.gltf", b.text(R"("attributes": {"POSITION": 0, "NORMAL": 1})"),
+            {"normals.gltf: meshes[0].primitives[0]: NORMAL count differs from POSITION count"});
+  }
+  {  // an application-specific attribute with four elements for three positions
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    b.accessor(dense(b.view(bytesOf<float>({1, 2, 3, 4})), 4, "SCALAR"));
+    refused("custom.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
+            {"meshes[0].primitives[0]: _heat count differs from POSITION count"});
+  }
+  {  // POSITION as VEC2
+    GltfBuilder b;
+    b.accessor(dense(b.view(bytesOf<float>({0, 0, 1, 0, 0, 1})), 3, "VEC2"));
+    refused("vec2.gltf", b.text(R"("attributes": {"POSITION": 0})"), {"vec2.gltf: accessors[0]: has 2 components, expected 3"});
+  }
+  {  // float indices
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    b.accessor(dense(b.view(bytesOf<float>({0, 1, 2})), 3, "SCALAR", 5126));
+    refused("float-indices.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 1)"),
+            {"float-indices.gltf: accessors[1]: unsupported index component type 5126 (FLOAT)"});
+  }
+  {  // a stride below the element's size, and one above glTF's 252
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle + std::string(12, '\0'), 8), 3));
+    refused("stride8.gltf", b.text(R"("attributes": {"POSITION": 0})"),
+            {"stride8.gltf: accessors[0]: byteStride 8 is not between the element size 12 and 252"});
+    GltfBuilder c;
+    c.accessor(denseVec3(c.view(triangle + std::string(3 * 256 - 36, '\0'), 256), 3));
+    refused("stride256.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"stride256.gltf: not a valid glTF 2.0 file", "byteStride"});
+  }
+  {  // an accessor index past the file's accessors (tinygltf refuses it first, as it does the stride of 256)
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    refused("no-accessor.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 4)"),
+            {"no-accessor.gltf: not a valid glTF 2.0 file", "indices accessor out of bounds"});
+  }
+}
+
+// Without `scenes`, every node that is nobody's child is drawn: a library of meshes still loads.
+TEST(GltfLoader, AFileWithoutScenesDrawsItsRootNodes) {
+  TempDir dir;
+  GltfBuilder b;
+  b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})), 3));
+  nlohmann::json doc = nlohmann::json::parse(b.text(R"("attributes": {"POSITION": 0})"));
+  doc.erase("scene");
+  doc.erase("scenes");
+  // Node 0 (the mesh, at x + 10) is node 1's child; node 2 draws it again at z - 5.
+  doc["nodes"] = nlohmann::json::parse(R"([{"mesh": 0, "translation": [10, 0, 0]}, {"children": [0]}, {"mesh": 0, "translation": [0, 0, -5]}])");
+  const Mesh mesh = loadGltf(dir.write("library.gltf", doc.dump())).mesh;
+  ASSERT_EQ(mesh.triangleCount(), 2u);
+  expectPositions(mesh, {{10, 0, 0}, {11, 0, 0}, {10, 1, 0}, {0, 0, -5}, {1, 0, -5}, {0, 1, -5}}, "roots 1 and 2, in node order");
+}
+
 TEST(GltfLoader, BadSparseStorageIsRefusedNamingItsPlace) {
   TempDir dir;
   struct Case { std::vector<std::uint32_t> indices; int count; int indexType; std::vector<std::string> fragments; };
@@ -740,7 +805,7 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
   b.accessor(dense(weights1, 3, "VEC4"));
   b.accessor(dense(bind, 2, "MAT4"));
   b.accessor(dense(b.view(bytesOf<float>({1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1})), 3, "VEC4"));
-  const std::string primitive =
+  std::string primitive =
       R"("attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 5, "TANGENT": 7})";
   // Node 0 holds the mesh (its translation must not apply); nodes 1 and 2 are the joints, 2 a
   // child of 1. `joint2` is node 2's transform.
@@ -782,6 +847,20 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
       ExitCode::kBadInput, {"skins[0]", "fewer inverseBindMatrices than joints"}, "too few bind matrices");
   testing::expectError([&] { loadGltf(dir.write("node.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1, 9]})"))); },
                        ExitCode::kBadInput, {"skins[0]", "joint 1 names no node"}, "joint node");
+  // Joints 3 and 4, outside the scene, each the other's child.
+  nlohmann::json cyclic = nlohmann::json::parse(file(R"("translation": [0, 1, 0])", R"({"joints": [3, 2]})"));
+  cyclic["nodes"].push_back({{"children", {4}}});
+  cyclic["nodes"].push_back({{"children", {3}}});
+  testing::expectError([&] { loadGltf(dir.write("cyclic.gltf", cyclic.dump())); }, ExitCode::kBadInput,
+                       {"cyclic.gltf: nodes[3]: ancestry deeper than 256 or cyclic"}, "a joint's cyclic ancestry");
+  // The second set of influences without its weights, then with weights for two of three vertices.
+  primitive = R"("attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4})";
+  testing::expectError([&] { loadGltf(dir.write("half.gltf", file(R"("translation": [0, 1, 0])"))); }, ExitCode::kBadInput,
+                       {"half.gltf: meshes[0].primitives[0]: has only one of JOINTS_1 and WEIGHTS_1"}, "joints alone");
+  b.accessor(dense(weights1, 2, "VEC4"));
+  primitive = R"("attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3, "JOINTS_1": 4, "WEIGHTS_1": 8})";
+  testing::expectError([&] { loadGltf(dir.write("short.gltf", file(R"("translation": [0, 1, 0])"))); }, ExitCode::kBadInput,
+                       {"meshes[0].primitives[0]: JOINTS_1 or WEIGHTS_1 count differs from POSITION count"}, "two weights");
 }
 
 // Every built-in and hard-case scene, written by `rastercheck export` (gltfFromScene) and read
