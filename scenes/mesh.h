@@ -61,7 +61,11 @@ bool validAttributeName(const std::string& name);
 // negated where the transform mirrors, so that the bitangent keeps pointing the way it moved.
 glm::dvec4 movedTangent(const glm::dmat3& linear, const glm::dvec4& tangent);
 
-// Appends `part` to `into`, its positions mapped by `worldFromPart` (in double, rounded once),
+// Whether `m`'s last row is (0, 0, 0, 1): a mesh is placed only by such a matrix, since
+// appendMesh maps positions without dividing by w.
+inline bool isAffine(const glm::dmat4& m) { return m[0][3] == 0.0 && m[1][3] == 0.0 && m[2][3] == 0.0 && m[3][3] == 1.0; }
+
+// Appends `part` to `into`, its positions mapped by `worldFromPart` (affine; in double, rounded once),
 // an attribute named "normal" with 3 components by its inverse transpose and one named
 // "tangent" with 4 by movedTangent (both renormalised).
 // Only attributes carried by both (same name and component count) survive: a merged mesh never

@@ -65,6 +65,8 @@ struct Reader {
       if (!m.is_array() || m.size() != 16) fail(pointer + "/matrix", "must be 16 numbers, column-major");
       glm::dmat4 result;
       for (int i = 0; i < 16; ++i) result[i / 4][i % 4] = number(m[i], pointer + "/matrix/" + std::to_string(i));
+      if (!isAffine(result)) fail(pointer + "/matrix", "must be affine: elements 3, 7, 11 and 15 (its last row) must be 0, 0, 0, 1");
+      if (!(std::fabs(glm::determinant(glm::dmat3(result))) > 0.0)) fail(pointer + "/matrix", "is singular: it would flatten the mesh");
       return result;
     }
     glm::dmat4 result(1.0);

@@ -106,6 +106,13 @@ TEST(GltfLoader, OutOfRangeAccessorsIndicesAndCyclesAreRefused) {
   const std::string cycle = dir.write(
       "cycle.gltf", gltfText(dataUri(triangleBytes()), "", 3, R"("nodes": [{"mesh": 0, "children": [1]}, {"children": [0]}])"));
   testing::expectError([&] { loadGltf(cycle); }, ExitCode::kBadInput, {"cycle"}, "cycle");
+  // A node matrix must be affine (glTF: it decomposes into translation, rotation and scale);
+  // the mesh is placed without a division by w.
+  const std::string projective = dir.write(
+      "projective.gltf", gltfText(dataUri(triangleBytes()), "", 3, R"("nodes": [{"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0.5, 0,0,1,0, 0,0,0,1]}])"));
+  testing::expectError([&] { loadGltf(projective); }, ExitCode::kBadInput,
+                       {"projective.gltf: nodes[0]: matrix: is not affine: elements 3, 7, 11 and 15 (its last row) must be 0, 0, 0, 1"},
+                       "projective");
 }
 
 TEST(GltfLoader, CameraOptionChoosesAmongTheFilesCamerasAndAnUnusableOneIsRefusedOnlyWhenUsed) {

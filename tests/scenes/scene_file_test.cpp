@@ -38,6 +38,23 @@ TEST(SceneFile, MeshesTransformsCameraImageAndAttributes) {
   EXPECT_EQ(scene.camera.zFar(), 100.0);
 }
 
+// A matrix places a mesh as the translate, rotate and scale it stands for (column-major).
+TEST(SceneFile, AMatrixPlacesAMeshAsItsTranslateRotateAndScaleDo) {
+  TempDir dir;
+  dir.write("a.obj", kTriangleUvNormal);
+  const Scene byMatrix = loadSceneFile(dir.write("m.json", R"({"meshes": [{"path": "a.obj", "transform":
+      {"matrix": [0,2,0,0, -2,0,0,0, 0,0,2,0, 10,0,-1,1]}}]})"));
+  const Scene byParts = loadSceneFile(dir.write("p.json", R"({"meshes": [{"path": "a.obj", "transform":
+      {"translate": [10, 0, -1], "rotate": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2}}]})"));
+  ASSERT_EQ(byMatrix.mesh.positions.size(), 3u);
+  EXPECT_EQ(byMatrix.mesh.positions[1], glm::vec3(10, 2, -1));  // (1, 0, 0) doubled, turned to +y, moved
+  EXPECT_EQ(byMatrix.mesh.positions[2], glm::vec3(8, 0, -1));
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(byMatrix.mesh.positions[i][k], byParts.mesh.positions[i][k], 1e-6) << i << "," << k;
+  }
+  EXPECT_EQ(byMatrix.mesh.findAttribute("normal")->values[2], 1.0f);  // +z stays +z, renormalised
+}
+
 TEST(SceneFile, AttributesAreThoseEveryMeshCarries) {
   TempDir dir;
   dir.write("a.obj", kTriangleUvNormal);
@@ -70,6 +87,18 @@ TEST(SceneFile, MistakesAreRefusedWithTheirJsonPointer) {
       {R"({"meshes": [{"path": "a.obj"}], "camera": {"near": 5, "far": 1}})", "camera"},
       {R"({"meshes": [{"path": "a.obj"}], "camera": {"eye": [0, 0, 0], "target": [0, 0, 0]}})", "camera"},
       {R"({"meshes": [{"path": "a.obj", "transform": {"scale": 0}}]})", "/meshes/0/transform/scale"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "scale": 2}}]})",
+       "/meshes/0/transform: give either matrix or translate/rotate/scale, not both"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0, 0,1,0, 0,0,1]}}]})",
+       "/meshes/0/transform/matrix: must be 16 numbers, column-major"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,"x", 0,0,0,1]}}]})",
+       "/meshes/0/transform/matrix/11"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0,0.5, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}]})",
+       "/meshes/0/transform/matrix: must be affine: elements 3, 7, 11 and 15 (its last row) must be 0, 0, 0, 1"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,2]}}]})",
+       "/meshes/0/transform/matrix: must be affine"},
+      {R"({"meshes": [{"path": "a.obj", "transform": {"matrix": [1,0,0,0, 2,0,0,0, 0,0,1,0, 0,0,0,1]}}]})",
+       "/meshes/0/transform/matrix: is singular: it would flatten the mesh"},
       {R"({"meshes": [{"path": "a.obj"}])", "s.json"},
       {"", "s.json"},
   };
