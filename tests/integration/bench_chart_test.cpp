@@ -579,6 +579,13 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
     rc::testing::expectError([&] { rc::app::readBenchJson(bad); }, rc::ExitCode::kBadInput,
                              {bad + ": /rows/1/" + c.field + ": is "}, std::string(c.field) + " = " + c.value);
   }
+  // JSON that is not a bench report at all: check's own report, another version, rows not a list.
+  for (const char* text : {R"({"format_version": 1, "scenes": []})", R"({"format_version": 2, "rows": []})",
+                           R"({"format_version": 1, "rows": {}})", R"([1, 2])"}) {
+    const std::string other = temp.write("other.json", text);
+    rc::testing::expectError([&] { rc::app::readBenchJson(other); }, rc::ExitCode::kBadInput,
+                             {other + ": not a rastercheck bench report (format_version 1 with rows)"}, text);
+  }
 }
 
 // The load bench measured comes back; a share outside 0 to 1, or one missing or not a number, is

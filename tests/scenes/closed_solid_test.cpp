@@ -51,6 +51,23 @@ TEST(ClosedSolid, TheCheckRejectsOpenInsideOutAndSelfCrossingMeshes) {
   twice.positions.insert(twice.positions.end(), sphere.positions.begin(), sphere.positions.end());
   for (const glm::uvec3& t : sphere.triangles) twice.triangles.push_back(t + n);
   EXPECT_NE(closedSolidProblem(twice), "");
+  // A double cone whose rim of 10 distinct vertices goes round the axis twice (radius 1 the
+  // first time, 2 the second): closed, every edge paired, every triangle facing away from the
+  // centre, and yet it wraps the centre twice, which only the solid angles show.
+  Mesh doubled;
+  constexpr int kRim = 10;
+  for (int i = 0; i < kRim; ++i) {
+    const double angle = 2.0 * M_PI * (i % 5) / 5.0, r = i < 5 ? 1.0 : 2.0;
+    doubled.positions.push_back(glm::vec3(float(r * std::cos(angle)), float(r * std::sin(angle)), 0.0f));
+  }
+  doubled.positions.push_back({0, 0, 1});   // top, kRim
+  doubled.positions.push_back({0, 0, -1});  // bottom, kRim + 1
+  for (unsigned i = 0; i < kRim; ++i) {
+    const unsigned next = (i + 1) % kRim;
+    doubled.triangles.push_back({kRim, i, next});
+    doubled.triangles.push_back({kRim + 1, next, i});
+  }
+  EXPECT_NE(closedSolidProblem(doubled).find("the solid angles sum to 25.13"), std::string::npos) << closedSolidProblem(doubled);
   EXPECT_NE(closedSolidProblem(makeBuiltinScene("floor").mesh), "");
 }
 

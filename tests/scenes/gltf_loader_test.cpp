@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <cstdint>
@@ -403,6 +404,16 @@ TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
     refused("custom.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
             {"meshes[0].primitives[0]: _heat count differs from POSITION count"});
   }
+  {  // a NaN in an application-specific attribute, and an infinite position
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    b.accessor(dense(b.view(bytesOf<float>({1, std::nanf(""), 3})), 3, "SCALAR"));
+    refused("nan.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
+            {"nan.gltf: attribute 'heat', vertex 1: value is not finite"});
+    GltfBuilder c;
+    c.accessor(denseVec3(c.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, std::numeric_limits<float>::infinity(), 0})), 3));
+    refused("inf.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"inf.gltf: vertex 2: position is not finite"});
+  }
   {  // POSITION as VEC2
     GltfBuilder b;
     b.accessor(dense(b.view(bytesOf<float>({0, 0, 1, 0, 0, 1})), 3, "VEC2"));
@@ -783,6 +794,8 @@ TEST(GltfLoader, MeshoptCompressedBufferViewsAreDecoded) {
        {"bufferViews[0]", "more than meshoptimizer's codecs can expand"}},
       {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["filter"] = "OCTAHEDRAL"; },
        {ext + "/byteStride", "does not suit the OCTAHEDRAL filter"}},
+      {[](nlohmann::json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"].erase("count"); },
+       {"bad.gltf: " + ext + ": has no count"}},
   };
   for (const Case& c : cases) {
     const std::string path = dir.write("bad.gltf", meshoptGltf(c.edit));
