@@ -34,7 +34,7 @@ struct HeatScale {
 };
 
 inline HeatScale heatScaleByKey(const std::string& key) {
-  if (key == "ulps") return {-1.0, 6.0, "barycentric error in float ulps of 1 (2^-23), same triangle", "ulps"};
+  if (key == "ulps") return {-1.0, 6.0, "barycentric error in float ulps just below 1 (2^-24), same triangle", "ulps"};
   if (key == "bound") return {-4.0, 2.0, "barycentric error / bound (above 1 fails), same triangle", "bound"};
   return {-8.0, -1.0, "barycentric error |b_test - b_ref|, same triangle", "error"};
 }

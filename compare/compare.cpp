@@ -342,7 +342,8 @@ FamilyReport measureFamily(const Family& f, const PlaneVector<PixelClass>& class
       double e = std::fabs(t - r);
       if (f.kind == Family::kDepth && r != 0.0) e /= std::fabs(r);
       if (e > error) error = e, tv = t, rv = r;
-      // Ulps: of 1 for barycentrics, of the value for depth (e is relative), of the range.
+      // Ulps: 2^-24 for barycentrics (the spacing of floats just below 1, where a barycentric
+      // near 1 lies), of the value for depth (e is relative), of the range.
       const double unit = f.kind == Family::kBary    ? floatUlp(1.0) / 2.0
                           : f.kind == Family::kDepth ? floatUlp(r) / std::max(std::fabs(r), 1e-300)
                                                      : floatUlp(std::max(fr.range, std::fabs(r)));
@@ -490,8 +491,8 @@ void paintHeatmap(Framebuffer& heatmap, const CompareReport& report, const Thres
     const std::size_t last = std::min(n, first + std::size_t(16) * width);
     for (std::size_t i = first; i < last; ++i) {
       classPlane[i] = std::uint32_t(classes[i]);
-      if (explanationPlane) explanationPlane[i] = std::uint32_t(explanations[i]);
       const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
+      if (explanationPlane) explanationPlane[i] = disagree ? std::uint32_t(explanations[i]) : kNothingToExplain;
       const bool nonFinite =
           std::any_of(nonFiniteOf.begin(), nonFiniteOf.end(), [i](const auto& flags) { return flags[i] != 0; });
       Rgb colour = nonFinite                                      ? kColourNonFinite

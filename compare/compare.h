@@ -30,12 +30,14 @@ enum class Explanation : std::uint8_t {
   kUnexplained = 2,
 };
 inline constexpr int kExplanationCount = 3;
+// The heatmap's explanation.id where the two images agree (both empty, or the same triangle).
+inline constexpr std::uint32_t kNothingToExplain = 0xFFFFFFFFu;
 const char* explanationName(Explanation e);
 
 // What the heatmap's colours show, for the barycentric family.
 enum class HeatmapQuantity {
   kError,       // |b_test - b_ref|, log scale 1e-8..1e-1
-  kUlps,        // the same in float ulps of 1 (2^-23), log scale 1e-1..1e6
+  kUlps,        // the same in float ulps just below 1 (2^-24), log scale 1e-1..1e6
   kBoundRatio,  // error / (sum of the two paths' bounds), log scale 1e-4..1e2; > 1 fails
 };
 
@@ -99,7 +101,7 @@ struct FamilyReport {
   double threshold = 0.0;
   double gated = 0.0;  // the value compared with the limit: max / bound, or max (/ range)
   FamilyStats stats;   // errors
-  FamilyStats ulps;    // errors in float ulps: of 1 (bary), of the value (depth), of the range
+  FamilyStats ulps;    // errors in float ulps: just below 1, 2^-24 (bary), of the value (depth), of the range
   FamilyStats ratio;   // errors / bound, when bounded
 
   bool isAttribute() const { return isAttributeFamily(name); }

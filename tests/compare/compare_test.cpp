@@ -8,11 +8,13 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "compare/baseline.h"
+#include "compare/colormap.h"
 #include "compare/compare.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"
@@ -760,6 +762,54 @@ TEST(CompareLimits, ADisagreementIsInTheEdgeBandUpToTheSumOfBothBandsFromEitherP
       }
     }
   }
+}
+
+// The heatmap: explanation.id names why each disagreement is allowed (or that it is not) and
+// marks every agreeing pixel kNothingToExplain; R, G and B colour the quantity --heatmap-shows
+// names, from its own plane on its own scale, and the header records which.
+TEST(CompareHeatmap, ExplanationsMarkOnlyDisagreementsAndTheColoursShowTheChosenQuantity) {
+  Framebuffer test = diagnosed(true), ref = diagnosed(false);
+  idAt(test, 6, 0) = 2;  // another triangle at an edge: explained
+  at(test, channels::kDepth, 6, 0) = 5.0f;
+  at(test, channels::kEdgeDistance, 6, 0) = float(kBandTest);
+  idAt(test, 7, 0) = 2;  // another triangle far from every edge and 1 deeper: unexplained
+  at(test, channels::kDepth, 7, 0) = 5.0f;
+  at(test, channels::kBary[0], 3, 1) += float(0x1p-22);  // 4 ulps of 2^-24, a sixth of the bound
+  const std::size_t shown = std::size_t(1) * kW + 3;
+  std::vector<float> colours;
+  for (const auto& [quantity, key, value] : {std::tuple{HeatmapQuantity::kError, "error", 0x1p-22},
+                                             std::tuple{HeatmapQuantity::kUlps, "ulps", 4.0},
+                                             std::tuple{HeatmapQuantity::kBoundRatio, "bound", 1.0 / 6.0}}) {
+    Thresholds t;
+    t.heatmap = quantity;
+    Framebuffer heatmap;
+    compareImages(test, "t.exr", ref, "r.exr", t, &heatmap);
+    const auto& explanation = heatmap.find("explanation.id")->uints;
+    EXPECT_EQ(explanation[6], std::uint32_t(Explanation::kEdgeBand)) << key;
+    EXPECT_EQ(explanation[7], std::uint32_t(Explanation::kUnexplained)) << key;
+    for (std::size_t i = 0; i < explanation.size(); ++i) {
+      if (i != 6 && i != 7) EXPECT_EQ(explanation[i], kNothingToExplain) << key << ", pixel " << i;
+    }
+    EXPECT_EQ(heatmap.attributes.at("rastercheck.heatmapQuantity"), key);
+    EXPECT_EQ(heatmap.find("error.bary")->floats[shown], float(0x1p-22));
+    EXPECT_EQ(heatmap.find("ulps.bary")->floats[shown], 4.0f);
+    EXPECT_NEAR(heatmap.find("ratio.bary")->floats[shown], 1.0 / 6.0, 1e-7);
+    const Rgb expected = linearFromSrgb(heatColour(value, heatScaleByKey(key)));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(heatmap.find(std::string(1, "RGB"[k]))->floats[shown], expected[k], 1e-6) << key << ", channel " << k;
+      colours.push_back(heatmap.find(std::string(1, "RGB"[k]))->floats[shown]);
+    }
+  }
+  EXPECT_NE(colours[0], colours[3]);  // error and ulps put the same pixel at different places on their scales
+  EXPECT_NE(colours[3], colours[6]);
+  // Without the diagnostics there is no bound: "bound" falls back to the error, and says so.
+  Thresholds t;
+  t.heatmap = HeatmapQuantity::kBoundRatio;
+  Framebuffer heatmap;
+  compareImages(image(), "t.exr", image(), "r.exr", t, &heatmap);
+  EXPECT_EQ(heatmap.attributes.at("rastercheck.heatmapQuantity"), "error");
+  EXPECT_EQ(heatmap.find("ratio.bary"), nullptr);
+  EXPECT_EQ(heatmap.find("explanation.id"), nullptr);  // nothing explains without the diagnostics
 }
 
 // A path that drew nothing at a pixel writes 0 there for its edge distance: that is no
