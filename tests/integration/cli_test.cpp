@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <iterator>
 #include <sstream>
 #include <string>
@@ -311,6 +312,35 @@ TEST(Cli, CullSettingIsRecordedAsWhatTheFrameDid) {
     const CliRun r = run("render sphere -o " + out + args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(rc::readExr(out).attributes.at("rastercheck.cull"), cull) << args;
+  }
+}
+
+// Issue 4's settings, each chosen on the command line and recorded in the raster EXR's header:
+// the defaults, then every one changed at once.
+TEST(Cli, EveryRasterSettingIsRecordedInTheHeader) {
+  const rc::testing::TempDir temp;
+  const std::string out = temp.file("s.exr");
+  using Header = std::map<std::string, std::string>;
+  const Header defaults = {{"rastercheck.mode", "perspective"},      {"rastercheck.precision", "float"},
+                           {"rastercheck.subpixelBits", "8"},        {"rastercheck.depthMapping", "inverse-w"},
+                           {"rastercheck.fillRule", "top-left"},     {"rastercheck.cull", "back"},
+                           {"rastercheck.renderer", "raster"},       {"rastercheck.scene", "cube"}};
+  const Header changed = {{"rastercheck.mode", "affine"},            {"rastercheck.precision", "double"},
+                          {"rastercheck.subpixelBits", "4"},         {"rastercheck.depthMapping", "standard"},
+                          {"rastercheck.fillRule", "exclusive"},     {"rastercheck.cull", "none"},
+                          {"rastercheck.kernelIsa", "sse2"},         {"rastercheck.scene", "cube"}};
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, Header>>{
+           {"", defaults},
+           {" --mode affine --precision double --subpixel-bits 4 --depth-mapping standard --fill-rule exclusive"
+            " --cull none --raster-isa sse2",
+            changed}}) {
+    const CliRun r = run("render cube -o " + out + args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const rc::Framebuffer fb = rc::readExr(out);
+    for (const auto& [key, value] : expected) {
+      ASSERT_TRUE(fb.attributes.count(key)) << key << args;
+      EXPECT_EQ(fb.attributes.at(key), value) << key << args;
+    }
   }
 }
 

@@ -307,6 +307,12 @@ TEST(Cli, WarningLimitsArePrintedAndNeverFail) {
   EXPECT_NE(compared.output.find("warning: attr.normal: max error "), std::string::npos) << compared.output;
   EXPECT_EQ(compared.output.find("warning: attr.uv"), std::string::npos) << compared.output;
   EXPECT_EQ(run("compare " + full + " " + ref + " --warn-bary 1").output.find("warning:"), std::string::npos);
+  // The sphere's two renders disagree on the triangle at a few edge pixels.
+  const CliRun disagreeing = run("compare " + full + " " + ref + " --warn-disagreement 0");
+  EXPECT_EQ(disagreeing.exitCode, 0) << disagreeing.output;
+  EXPECT_NE(disagreeing.output.find("warning: different triangle at "), std::string::npos) << disagreeing.output;
+  EXPECT_NE(disagreeing.output.find(" of covered pixels, warning limit 0\n"), std::string::npos) << disagreeing.output;
+  EXPECT_EQ(run("compare " + full + " " + ref + " --warn-disagreement 0.5").output.find("warning:"), std::string::npos);
 
   const std::string junit = (dir / "j.xml").string(), report = (dir / "report").string();
   const CliRun checked = run("check sphere cube --warn-depth 0 -q --junit " + junit + " --report " + report);
