@@ -26,15 +26,17 @@ constexpr int kMaxSets = 8;
 // transforms in a small file could otherwise ask for any amount of memory.
 constexpr std::size_t kMaxInstancedTriangles = std::size_t(1) << 26;
 
-// A node's own transform; `where` names the node. A matrix must be affine: glTF requires one
-// that decomposes into translation, rotation and scale.
-glm::dmat4 localMatrix(const tinygltf::Node& node, const std::string& where) {
+// A node's own transform; where() names the node, made only for the error (the ancestry walk of
+// every skin joint comes here). A matrix must be affine: glTF requires one that decomposes into
+// translation, rotation and scale.
+template <typename Where>
+glm::dmat4 localMatrix(const tinygltf::Node& node, const Where& where) {
   if (node.matrix.size() == 16) {
     glm::dmat4 m;
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[std::size_t(c * 4 + r)];  // column-major
     }
-    if (!isAffine(m)) throw badInput(where + ": matrix", "is not affine: elements 3, 7, 11 and 15 (its last row) must be 0, 0, 0, 1");
+    if (!isAffine(m)) throw badInput(where() + ": matrix", "is not affine: elements 3, 7, 11 and 15 (its last row) must be 0, 0, 0, 1");
     return m;
   }
   glm::dmat4 m(1.0);
@@ -219,7 +221,7 @@ struct Walker {
       if (++depth > kMaxNodeDepth) {
         throw badInput(path + ": nodes[" + std::to_string(index) + "]", "ancestry deeper than " + std::to_string(kMaxNodeDepth) + " or cyclic");
       }
-      m = localMatrix(model.nodes[std::size_t(n)], path + ": nodes[" + std::to_string(n) + "]") * m;
+      m = localMatrix(model.nodes[std::size_t(n)], [&] { return path + ": nodes[" + std::to_string(n) + "]"; }) * m;
     }
     return m;
   }
@@ -440,7 +442,7 @@ struct Walker {
     if (depth > kMaxNodeDepth) throw badInput(where, "node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
     if (!onPath.insert(index).second) throw badInput(where, "the node hierarchy has a cycle");
     const tinygltf::Node& node = model.nodes[index];
-    const glm::dmat4 world = parent * localMatrix(node, where);
+    const glm::dmat4 world = parent * localMatrix(node, [&] { return where; });
     if (!finiteMatrix(world)) throw badInput(where, "transform is not finite");
     if (node.camera >= 0) readCamera(node.camera, world, where);
     if (node.mesh >= 0) {

@@ -304,6 +304,12 @@ TEST(GltfLoader, SparseAccessorsReplaceTheElementsTheyName) {
   EXPECT_EQ(mesh.triangleCount(), 1u);
 }
 
+// Writes `text` as `name` in `dir` and expects loadGltf to refuse it as bad input, with every fragment.
+void expectRefusedGltf(TempDir& dir, const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+  const std::string path = dir.write(name, text);
+  testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, fragments, name);
+}
+
 // Each triangle's vertex indices, as a list of triples.
 std::vector<std::array<unsigned, 3>> trianglesOf(const Mesh& mesh) {
   std::vector<std::array<unsigned, 3>> out;
@@ -363,18 +369,14 @@ TEST(GltfLoader, StripsAndFansMakeTheSpecificationsTrianglesInItsVertexOrder) {
 TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
   TempDir dir;
   const std::initializer_list<float> square = {0, 0, 1, 0, 1, 1, 0, 1};
-  const auto refused = [&](const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
-    const std::string path = dir.write(name, text);
-    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, fragments, name);
-  };
-  refused("four.gltf", topologyGltf(4, square),
-          {"four.gltf: meshes[0].primitives[0]: 4 vertices do not make whole triangles", "multiple of 3"});
-  refused("seven.gltf", topologyGltf(4, square, {0, 1, 2, 0, 2, 3, 1}), {"meshes[0].primitives[0]", "7 vertices"});
-  refused("short-strip.gltf", topologyGltf(5, square, {0, 1}),
-          {"meshes[0].primitives[0]: 2 vertices are too few for mode TRIANGLE_STRIP (it takes 3 or more)"});
-  refused("short-fan.gltf", topologyGltf(6, square, {3, 2}), {"2 vertices are too few for mode TRIANGLE_FAN"});
-  refused("mode7.gltf", topologyGltf(7, square), {"mode7.gltf: meshes[0].primitives[0].mode: 7 is not a glTF topology (0 to 6)"});
-  refused("negative.gltf", topologyGltf(-1, square), {"primitives[0].mode: -1 is not a glTF topology"});
+  expectRefusedGltf(dir, "four.gltf", topologyGltf(4, square),
+                    {"four.gltf: meshes[0].primitives[0]: 4 vertices do not make whole triangles", "multiple of 3"});
+  expectRefusedGltf(dir, "seven.gltf", topologyGltf(4, square, {0, 1, 2, 0, 2, 3, 1}), {"meshes[0].primitives[0]", "7 vertices"});
+  expectRefusedGltf(dir, "short-strip.gltf", topologyGltf(5, square, {0, 1}),
+                    {"meshes[0].primitives[0]: 2 vertices are too few for mode TRIANGLE_STRIP (it takes 3 or more)"});
+  expectRefusedGltf(dir, "short-fan.gltf", topologyGltf(6, square, {3, 2}), {"2 vertices are too few for mode TRIANGLE_FAN"});
+  expectRefusedGltf(dir, "mode7.gltf", topologyGltf(7, square), {"mode7.gltf: meshes[0].primitives[0].mode: 7 is not a glTF topology (0 to 6)"});
+  expectRefusedGltf(dir, "negative.gltf", topologyGltf(-1, square), {"primitives[0].mode: -1 is not a glTF topology"});
   // Points and lines carry no surface and are passed over, whatever their count.
   GltfBuilder b;
   b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0})), 4));
@@ -386,60 +388,56 @@ TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
 TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
   TempDir dir;
   const std::string triangle = bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
-  const auto refused = [&](const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
-    const std::string path = dir.write(name, text);
-    testing::expectError([&] { loadGltf(path); }, ExitCode::kBadInput, fragments, name);
-  };
   {  // NORMAL with two elements for three positions
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
     b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 1, 0, 0, 1})), 2));
-    refused("normals.gltf", b.text(R"("attributes": {"POSITION": 0, "NORMAL": 1})"),
-            {"normals.gltf: meshes[0].primitives[0]: NORMAL count differs from POSITION count"});
+    expectRefusedGltf(dir, "normals.gltf", b.text(R"("attributes": {"POSITION": 0, "NORMAL": 1})"),
+                      {"normals.gltf: meshes[0].primitives[0]: NORMAL count differs from POSITION count"});
   }
   {  // an application-specific attribute with four elements for three positions
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
     b.accessor(dense(b.view(bytesOf<float>({1, 2, 3, 4})), 4, "SCALAR"));
-    refused("custom.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
-            {"meshes[0].primitives[0]: _heat count differs from POSITION count"});
+    expectRefusedGltf(dir, "custom.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
+                      {"meshes[0].primitives[0]: _heat count differs from POSITION count"});
   }
   {  // a NaN in an application-specific attribute, and an infinite position
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
     b.accessor(dense(b.view(bytesOf<float>({1, std::nanf(""), 3})), 3, "SCALAR"));
-    refused("nan.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
-            {"nan.gltf: attribute 'heat', vertex 1: value is not finite"});
+    expectRefusedGltf(dir, "nan.gltf", b.text(R"("attributes": {"POSITION": 0, "_heat": 1})"),
+                      {"nan.gltf: attribute 'heat', vertex 1: value is not finite"});
     GltfBuilder c;
     c.accessor(denseVec3(c.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, std::numeric_limits<float>::infinity(), 0})), 3));
-    refused("inf.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"inf.gltf: vertex 2: position is not finite"});
+    expectRefusedGltf(dir, "inf.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"inf.gltf: vertex 2: position is not finite"});
   }
   {  // POSITION as VEC2
     GltfBuilder b;
     b.accessor(dense(b.view(bytesOf<float>({0, 0, 1, 0, 0, 1})), 3, "VEC2"));
-    refused("vec2.gltf", b.text(R"("attributes": {"POSITION": 0})"), {"vec2.gltf: accessors[0]: has 2 components, expected 3"});
+    expectRefusedGltf(dir, "vec2.gltf", b.text(R"("attributes": {"POSITION": 0})"), {"vec2.gltf: accessors[0]: has 2 components, expected 3"});
   }
   {  // float indices
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
     b.accessor(dense(b.view(bytesOf<float>({0, 1, 2})), 3, "SCALAR", 5126));
-    refused("float-indices.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 1)"),
-            {"float-indices.gltf: accessors[1]: unsupported index component type 5126 (FLOAT)"});
+    expectRefusedGltf(dir, "float-indices.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 1)"),
+                      {"float-indices.gltf: accessors[1]: unsupported index component type 5126 (FLOAT)"});
   }
   {  // a stride below the element's size, and one above glTF's 252
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle + std::string(12, '\0'), 8), 3));
-    refused("stride8.gltf", b.text(R"("attributes": {"POSITION": 0})"),
-            {"stride8.gltf: accessors[0]: byteStride 8 is not between the element size 12 and 252"});
+    expectRefusedGltf(dir, "stride8.gltf", b.text(R"("attributes": {"POSITION": 0})"),
+                      {"stride8.gltf: accessors[0]: byteStride 8 is not between the element size 12 and 252"});
     GltfBuilder c;
     c.accessor(denseVec3(c.view(triangle + std::string(3 * 256 - 36, '\0'), 256), 3));
-    refused("stride256.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"stride256.gltf: not a valid glTF 2.0 file", "byteStride"});
+    expectRefusedGltf(dir, "stride256.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"stride256.gltf: not a valid glTF 2.0 file", "byteStride"});
   }
   {  // an accessor index past the file's accessors (tinygltf refuses it first, as it does the stride of 256)
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
-    refused("no-accessor.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 4)"),
-            {"no-accessor.gltf: not a valid glTF 2.0 file", "indices accessor out of bounds"});
+    expectRefusedGltf(dir, "no-accessor.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 4)"),
+                      {"no-accessor.gltf: not a valid glTF 2.0 file", "indices accessor out of bounds"});
   }
 }
 
