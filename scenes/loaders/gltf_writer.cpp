@@ -23,22 +23,32 @@ const char* typeOf(int components) {
   return types[std::clamp(components, 1, 4) - 1];
 }
 
-// The set number n of a name "uv" (0) or "uv<n>" for n in 1..7, or -1.
-int setOf(const std::string& name, const std::string& stem) {
-  if (name == stem) return 0;
-  if (name.size() != stem.size() + 1 || name.compare(0, stem.size(), stem) != 0) return -1;
-  const char digit = name.back();
+// The set number n of an attribute named "uv" (0) or "uv<n>" (n in 1..7) whose components glTF
+// allows for the set (TEXCOORD_n: 2, COLOR_n: 3 or 4), or -1.
+int setOf(const Attribute& a, const std::string& stem) {
+  const bool fits = stem == "uv" ? a.components == 2 : a.components == 3 || a.components == 4;
+  if (!fits) return -1;
+  if (a.name == stem) return 0;
+  if (a.name.size() != stem.size() + 1 || a.name.compare(0, stem.size(), stem) != 0) return -1;
+  const char digit = a.name.back();
   return digit >= '1' && digit <= '7' ? digit - '0' : -1;
 }
 
 // glTF's name for an attribute, as the loader names them back: NORMAL, TANGENT, TEXCOORD_n ("uv",
-// "uv1"...), COLOR_n ("color", "color1"...), else application-specific ("_name").
-std::string semanticOf(const Attribute& a) {
+// "uv1"...), COLOR_n ("color", "color1"...), else application-specific ("_name"). The
+// specification numbers sets from 0 without a gap (3.7.2.1), so a set takes glTF's name only
+// when every set below it is in the mesh; one past a gap keeps its own ("_uv1" alone).
+std::string semanticOf(const Attribute& a, const Mesh& mesh) {
   if (a.name == "normal" && a.components == 3) return "NORMAL";
   if (a.name == "tangent" && a.components == 4) return "TANGENT";
-  if (const int set = setOf(a.name, "uv"); set >= 0 && a.components == 2) return "TEXCOORD_" + std::to_string(set);
-  if (const int set = setOf(a.name, "color"); set >= 0 && (a.components == 3 || a.components == 4)) {
-    return "COLOR_" + std::to_string(set);
+  for (const auto& [stem, semantic] : {std::pair{"uv", "TEXCOORD_"}, std::pair{"color", "COLOR_"}}) {
+    const int set = setOf(a, stem);
+    if (set < 0) continue;
+    for (int below = 0; below < set; ++below) {
+      const auto isBelow = [&](const Attribute& b) { return setOf(b, stem) == below; };
+      if (std::none_of(mesh.attributes.begin(), mesh.attributes.end(), isBelow)) return "_" + a.name;
+    }
+    return semantic + std::to_string(set);
   }
   return "_" + a.name;
 }
@@ -74,7 +84,7 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
              {"min", {low.x, low.y, low.z}}, {"max", {high.x, high.y, high.z}}},
             kArrayBuffer);
   for (const Attribute& a : mesh.attributes) {
-    attributes[semanticOf(a)] = d.add(a.values.data(), a.values.size() * sizeof(float),
+    attributes[semanticOf(a, mesh)] = d.add(a.values.data(), a.values.size() * sizeof(float),
                                       {{"componentType", kFloat}, {"count", mesh.positions.size()}, {"type", typeOf(a.components)}},
                                       kArrayBuffer);
   }

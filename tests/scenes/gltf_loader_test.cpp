@@ -640,8 +640,38 @@ TEST(GltfLoader, FurtherUvAndColorSetsAreReadAndExportedUnderTheirGltfNames) {
   EXPECT_EQ(scene.mesh.findAttribute("color"), nullptr);
   const nlohmann::json exported = nlohmann::json::parse(gltfFromScene(scene, false));
   const nlohmann::json& attributes = exported["meshes"][0]["primitives"][0]["attributes"];
-  for (const char* name : {"POSITION", "TEXCOORD_0", "TEXCOORD_1", "COLOR_1"}) EXPECT_TRUE(attributes.contains(name)) << name;
+  // COLOR_1 without COLOR_0 breaks the specification's numbering from 0 (3.7.2.1); export keeps
+  // the set under its own name, which reads back as the same channel.
+  for (const char* name : {"POSITION", "TEXCOORD_0", "TEXCOORD_1", "_color1"}) EXPECT_TRUE(attributes.contains(name)) << name;
   EXPECT_EQ(attributes.size(), 4u);
+  const Scene again = loadScene(dir.write("again.gltf", gltfFromScene(scene, false)));
+  ASSERT_EQ(again.mesh.attributes.size(), scene.mesh.attributes.size());
+  for (const Attribute& a : scene.mesh.attributes) {
+    const Attribute* read = again.mesh.findAttribute(a.name);
+    ASSERT_NE(read, nullptr) << a.name;
+    EXPECT_EQ(read->components, a.components) << a.name;
+    EXPECT_EQ(read->values, a.values) << a.name;
+  }
+  // A set takes glTF's name only when every set below it has one: "uv" with 3 components is not
+  // TEXCOORD_0, so "uv1" after it is not TEXCOORD_1; RGB and RGBA colours are both COLOR_n.
+  const auto semantics = [&](std::vector<Attribute> declared) {
+    Scene s = scene;
+    s.mesh.attributes.clear();
+    for (Attribute& a : declared) {
+      a.values.assign(s.mesh.positions.size() * std::size_t(a.components), 0.5f);
+      s.mesh.attributes.push_back(std::move(a));
+    }
+    std::vector<std::string> names;
+    const nlohmann::json doc = nlohmann::json::parse(gltfFromScene(s, false));
+    for (const auto& [name, index] : doc["meshes"][0]["primitives"][0]["attributes"].items()) {
+      if (name != "POSITION") names.push_back(name);
+    }
+    return names;
+  };
+  EXPECT_EQ(semantics({{"uv1", 2, {}}}), (std::vector<std::string>{"_uv1"}));
+  EXPECT_EQ(semantics({{"uv", 3, {}}, {"uv1", 2, {}}}), (std::vector<std::string>{"_uv", "_uv1"}));
+  EXPECT_EQ(semantics({{"color1", 4, {}}, {"color", 3, {}}, {"uv2", 2, {}}, {"uv", 2, {}}}),
+            (std::vector<std::string>{"COLOR_0", "COLOR_1", "TEXCOORD_0", "_uv2"}));
 
   // Application-specific names that cannot name a channel are skipped: empty, "_" alone, a dash.
   const Scene odd = loadScene(dir.write(
