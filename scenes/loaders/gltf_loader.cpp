@@ -134,8 +134,7 @@ struct Walker {
   // `weights`: the morph target weights in force (the node's, else the mesh's; empty: all 0).
   Mesh readPrimitive(const tinygltf::Primitive& primitive, const std::vector<double>& weights, const std::string& where) const {
     const auto& attrs = primitive.attributes;
-    auto position = attrs.find("POSITION");
-    if (position == attrs.end()) throw badInput(where, "primitive without POSITION");
+    const auto position = attrs.find("POSITION");  // there: visit skips primitives without one
     if (!weights.empty() && weights.size() != primitive.targets.size()) {
       throw badInput(where, "has " + std::to_string(primitive.targets.size()) + " morph targets, but " +
                                 std::to_string(weights.size()) + " weights are given");
@@ -461,6 +460,8 @@ struct Walker {
           throw badInput(at + ".mode", std::to_string(mode) + " is not a glTF topology (0 to 6)");
         }
         if (mode < TINYGLTF_MODE_TRIANGLES) continue;  // points and lines: no surface
+        // Nor a primitive without positions, which the specification says to skip (3.7.2.1).
+        if (primitives[i].attributes.count("POSITION") == 0) continue;
         parts.push_back(readPrimitive(primitives[i], weights, at));
         if (skinned) applySkin(node.skin, primitives[i], parts.back(), at);
         triangles += parts.back().triangleCount();
@@ -533,7 +534,9 @@ GltfContent loadGltf(const std::string& path, TriangleBudget budget) {
     }
   }
   for (int root : roots) walker.visit(root, glm::dmat4(1.0), 0);
-  if (walker.content.mesh.triangles.empty()) throw badInput(path, "no triangle primitives in the scene");
+  if (walker.content.mesh.triangles.empty()) {
+    throw badInput(path, "no triangle primitives in the scene (points, lines and primitives without POSITION draw none)");
+  }
   validateMesh(walker.content.mesh, path);
   // A file whose every mesh claims to bound a solid (as `rastercheck export` writes a closed
   // built-in scene) is believed once the scene it makes passes the check; else its back faces

@@ -30,7 +30,8 @@ struct GltfContent {
 // not every primitive carries are dropped. Node transforms (matrix or TRS) are applied, and
 // morph targets at the weights in force, and skins as their joints stand. Sparse accessors, KHR_mesh_quantization and
 // EXT_meshopt_compression are read (docs/scene-file.md).
-// Triangle lists, strips and fans are read; points and lines are skipped (no surface).
+// Triangle lists, strips and fans are read; points, lines and primitives without POSITION are
+// skipped (no surface).
 // A URI is never expanded, executed or fetched: only data: URIs and relative paths inside the
 // file's own folder are read. A camera is checked only when it is used: an orthographic one,
 // or one whose node collapses its view, is listed with its refusal.

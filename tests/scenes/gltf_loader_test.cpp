@@ -383,6 +383,13 @@ TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
   const std::string mixed = R"("attributes": {"POSITION": 0}, "mode": 1}, {"attributes": {"POSITION": 0}, "mode": 4, "indices": 1)";
   b.accessor(dense(b.view(bytesOf<std::uint16_t>({0, 1, 2})), 3, "SCALAR", 5123));
   EXPECT_EQ(loadGltf(dir.write("lines.gltf", b.text(mixed))).mesh.triangleCount(), 1u);
+  // So is a primitive without POSITION, as the specification says (3.7.2.1); its attributes
+  // take no part in which attributes every primitive carries.
+  const std::string positionless = R"("attributes": {"NORMAL": 0}, "mode": 4}, {"attributes": {"POSITION": 0}, "mode": 4, "indices": 1)";
+  const Mesh drawn = loadGltf(dir.write("positionless.gltf", b.text(positionless))).mesh;
+  EXPECT_EQ(drawn.triangleCount(), 1u);
+  EXPECT_TRUE(drawn.attributes.empty());
+  expectRefusedGltf(dir, "nothing.gltf", b.text(R"("attributes": {"NORMAL": 0}, "mode": 4)"), {"nothing.gltf: no triangle primitives in the scene (points, lines and primitives without POSITION draw none)"});
 }
 
 TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
