@@ -172,9 +172,10 @@ AccessorReader::AccessorReader(const tinygltf::Model& model, const std::string& 
 
 std::string AccessorReader::where(int index) const { return path_ + ": accessors[" + std::to_string(index) + "]"; }
 
-const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string& what) const {
+const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string& from) const {
   if (index < 0 || std::size_t(index) >= model_.accessors.size()) {
-    throw badInput(path_, what + " accessor " + std::to_string(index) + " out of range");
+    throw badInput(from, "names accessor " + std::to_string(index) + ", which the file does not have (it has " +
+                             std::to_string(model_.accessors.size()) + ")");
   }
   return model_.accessors[std::size_t(index)];
 }
@@ -210,8 +211,8 @@ void AccessorReader::copy(const Range& range, std::uint64_t count, std::uint64_t
   for (std::uint64_t i = 0; i < count; ++i) std::memcpy(out + i * element, range.base + i * range.stride, std::size_t(element));
 }
 
-HugeVector<unsigned char> AccessorReader::elements(int index, int components, const std::string& what) const {
-  const tinygltf::Accessor& a = accessor(index, what);
+HugeVector<unsigned char> AccessorReader::elements(int index, int components) const {
+  const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
   const std::string at = where(index);
   if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components) {
     throw badInput(at, "has " + std::to_string(tinygltf::GetNumComponentsInType(std::uint32_t(a.type))) +
@@ -274,8 +275,8 @@ HugeVector<unsigned char> AccessorReader::elements(int index, int components, co
   return bytes;
 }
 
-HugeVector<float> AccessorReader::floats(int index, Use use, int components, bool displacement) const {
-  const tinygltf::Accessor& a = accessor(index, useName(use));
+HugeVector<float> AccessorReader::floats(int index, Use use, int components, const std::string& from, bool displacement) const {
+  const tinygltf::Accessor& a = accessor(index, from);
   const int type = a.componentType;
   if (!allowedType(use, displacement, type, a.normalized, quantized_)) {
     std::string why = std::string(a.normalized ? "normalised " : "") + typeName(type) + " components are not allowed for " +
@@ -285,7 +286,7 @@ HugeVector<float> AccessorReader::floats(int index, Use use, int components, boo
     }
     throw badInput(where(index), why);
   }
-  const HugeVector<unsigned char> bytes = elements(index, components, useName(use));
+  const HugeVector<unsigned char> bytes = elements(index, components);
   const bool normalized = a.normalized && type != TINYGLTF_COMPONENT_TYPE_FLOAT;
   HugeVector<float> values(std::size_t(a.count) * std::size_t(components));
   const unsigned char* p = bytes.data();
@@ -318,8 +319,8 @@ HugeVector<float> AccessorReader::floats(int index, Use use, int components, boo
   return values;
 }
 
-HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount) const {
-  const tinygltf::Accessor& a = accessor(index, "index");
+HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount, const std::string& from) const {
+  const tinygltf::Accessor& a = accessor(index, from);
   const std::string at = where(index);
   if (a.type != TINYGLTF_TYPE_SCALAR) throw badInput(at, "indices must be SCALAR");
   const int type = a.componentType;
@@ -327,7 +328,7 @@ HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount)
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
     throw badInput(at, "unsupported index component type " + std::to_string(type) + " (" + typeName(type) + ")");
   }
-  const HugeVector<unsigned char> bytes = elements(index, 1, "index");
+  const HugeVector<unsigned char> bytes = elements(index, 1);
   const std::size_t size = std::size_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(type)));
   HugeVector<unsigned> out(std::size_t(a.count));
   for (std::size_t i = 0; i < out.size(); ++i) {

@@ -446,6 +446,37 @@ TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
     expectRefusedGltf(dir, "no-accessor.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 4)"),
                       {"no-accessor.gltf: not a valid glTF 2.0 file", "indices accessor out of bounds"});
   }
+  {  // an attribute, a morph target, a skin or an instance field naming an accessor the file has not
+    GltfBuilder b;
+    b.accessor(denseVec3(b.view(triangle), 3));
+    const nlohmann::json base = nlohmann::json::parse(b.text(R"("attributes": {"POSITION": 0})"));
+    const struct {
+      std::function<void(nlohmann::json&)> edit;
+      std::string message;
+    } cases[] = {
+        {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 7; },
+         "meshes[0].primitives[0].attributes.NORMAL: names accessor 7, which the file does not have (it has 1)"},
+        {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["attributes"]["_heat"] = 2; },
+         "meshes[0].primitives[0].attributes._heat: names accessor 2,"},
+        {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["targets"] = nlohmann::json::parse(R"([{"POSITION": 3}])"); },
+         "meshes[0].primitives[0].targets[0].POSITION: names accessor 3,"},
+        {[](nlohmann::json& d) {
+           d["skins"] = nlohmann::json::parse(R"([{"joints": [0], "inverseBindMatrices": 5}])");
+           d["nodes"][0]["skin"] = 0;
+         },
+         "skins[0].inverseBindMatrices: names accessor 5,"},
+        {[](nlohmann::json& d) {
+           d["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+           d["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] = 6;
+         },
+         "/attributes/TRANSLATION: names accessor 6,"},
+    };
+    for (const auto& c : cases) {
+      nlohmann::json doc = base;
+      c.edit(doc);
+      expectRefusedGltf(dir, "missing.gltf", doc.dump(), {"missing.gltf: ", c.message});
+    }
+  }
 }
 
 // Without `scenes`, every node that is nobody's child is drawn: a library of meshes still loads.
