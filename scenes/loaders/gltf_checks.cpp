@@ -103,6 +103,55 @@ void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const st
 
 namespace {
 
+// Where glTF puts the indices rastercheck follows: "[]" steps into each element of an array,
+// "{}" into each member of an object.
+const std::vector<std::vector<const char*>> kIndexFields = {
+    {"scene"},
+    {"scenes", "[]", "nodes", "[]"},
+    {"nodes", "[]", "camera"},
+    {"nodes", "[]", "mesh"},
+    {"nodes", "[]", "skin"},
+    {"nodes", "[]", "children", "[]"},
+    {"nodes", "[]", "extensions", "EXT_mesh_gpu_instancing", "attributes", "{}"},
+    {"meshes", "[]", "primitives", "[]", "indices"},
+    {"meshes", "[]", "primitives", "[]", "attributes", "{}"},
+    {"meshes", "[]", "primitives", "[]", "targets", "[]", "{}"},
+    {"accessors", "[]", "bufferView"},
+    {"accessors", "[]", "sparse", "indices", "bufferView"},
+    {"accessors", "[]", "sparse", "values", "bufferView"},
+    {"bufferViews", "[]", "buffer"},
+    {"skins", "[]", "inverseBindMatrices"},
+    {"skins", "[]", "skeleton"},
+    {"skins", "[]", "joints", "[]"},
+};
+
+void checkIndexField(const nlohmann::json& node, const std::vector<const char*>& field, std::size_t step,
+                     const std::string& pointer, const std::string& path) {
+  if (step == field.size()) {
+    if (!node.is_number_unsigned()) {
+      std::string value = node.dump();
+      if (value.size() > 40) value = value.substr(0, 40) + "...";
+      throw badInput(path + ": " + pointer, value + " is not an index (a whole number from 0)");
+    }
+    return;
+  }
+  const std::string_view key = field[step];
+  if (key == "[]" || key == "{}") {
+    if (key == "[]" ? !node.is_array() : !node.is_object()) return;  // tinygltf reports the shape
+    for (const auto& [name, item] : node.items()) checkIndexField(item, field, step + 1, pointer + "/" + name, path);
+  } else if (node.is_object() && node.contains(field[step])) {
+    checkIndexField(node[field[step]], field, step + 1, pointer + "/" + field[step], path);
+  }
+}
+
+}  // namespace
+
+void checkIndexFields(const nlohmann::json& doc, const std::string& path) {
+  for (const std::vector<const char*>& field : kIndexFields) checkIndexField(doc, field, 0, "", path);
+}
+
+namespace {
+
 const char* typeName(int componentType) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";

@@ -31,6 +31,11 @@ nlohmann::json parseJson(std::string_view original, const EmbeddedData& embedded
 // takeDataUris took must hold at least one byte, and as many as its byteLength says.
 void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const std::string& path);
 
+// Refuses (badInput naming the JSON pointer) an index rastercheck follows (a scene's nodes, a
+// node's mesh, camera, skin and children, a primitive's indices and attributes, an accessor's
+// bufferView...) that is not a whole number from 0: tinygltf reads a negative one as absent.
+void checkIndexFields(const nlohmann::json& doc, const std::string& path);
+
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
 // float or normalised signed integers (EXT_mesh_gpu_instancing's ROTATION).

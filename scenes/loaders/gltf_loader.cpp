@@ -491,6 +491,7 @@ GltfContent loadGltf(const std::string& path, TriangleBudget budget) {
   gltf::EmbeddedData embedded = gltf::takeDataUris(json, path);
   nlohmann::json doc = gltf::parseJson(json, embedded, path);
   gltf::checkUris(doc, embedded, path);
+  gltf::checkIndexFields(doc, path);
   const gltf::MeshoptPlan meshopt = gltf::planMeshopt(std::move(doc), path);
   // The JSON tinygltf reads: the meshopt plan's, else the one without data URIs, else the file's.
   const std::string& newJson = meshopt.changed ? meshopt.json : embedded.json;

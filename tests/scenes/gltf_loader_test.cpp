@@ -479,6 +479,40 @@ TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
   }
 }
 
+// tinygltf reads a negative index as absent: a node's "mesh": -2 drew nothing and "indices": -2
+// drew the vertices in order, without a word. Every index rastercheck follows is checked first.
+TEST(GltfLoader, AnIndexThatIsNotAWholeNumberFromZeroIsRefusedAtItsPointer) {
+  TempDir dir;
+  GltfBuilder b;
+  b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})), 3));
+  const nlohmann::json base = nlohmann::json::parse(b.text(R"("attributes": {"POSITION": 0})"));
+  EXPECT_EQ(loadGltf(dir.write("plain.gltf", base.dump())).mesh.triangleCount(), 1u);
+  const struct {
+    const char* pointer;
+    nlohmann::json value;
+    const char* shown;
+  } cases[] = {
+      {"/scene", -1, "-1"},
+      {"/scenes/0/nodes/0", 0.5, "0.5"},
+      {"/nodes/0/mesh", -2, "-2"},
+      {"/nodes/0/skin", -3, "-3"},
+      {"/nodes/0/camera", "0", "\"0\""},
+      {"/nodes/0/children", nlohmann::json::array({-1}), "-1"},
+      {"/meshes/0/primitives/0/indices", -2, "-2"},
+      {"/meshes/0/primitives/0/attributes/NORMAL", -5, "-5"},
+      {"/meshes/0/primitives/0/targets", nlohmann::json::array({{{"POSITION", 1.0}}}), "1.0"},
+      {"/accessors/0/bufferView", -4, "-4"},
+      {"/bufferViews/0/buffer", nullptr, "null"},
+  };
+  for (const auto& c : cases) {
+    nlohmann::json doc = base;
+    doc[nlohmann::json::json_pointer(c.pointer)] = c.value;
+    std::string at = c.pointer;
+    if (c.value.is_array()) at += c.value[0].is_object() ? "/0/POSITION" : "/0";
+    expectRefusedGltf(dir, "bad.gltf", doc.dump(), {"bad.gltf: " + at + ": " + c.shown + " is not an index (a whole number from 0)"});
+  }
+}
+
 // Without `scenes`, every node that is nobody's child is drawn: a library of meshes still loads.
 TEST(GltfLoader, AFileWithoutScenesDrawsItsRootNodes) {
   TempDir dir;
