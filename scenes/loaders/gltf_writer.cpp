@@ -70,11 +70,9 @@ struct Document {
   }
 };
 
-}  // namespace
-
-std::string gltfFromScene(const Scene& scene, bool binary) {
-  const Mesh& mesh = scene.mesh;
-  Document d;
+// The mesh as one triangle-list primitive: float positions (with min and max), each attribute
+// under semanticOf's name, 32-bit indices in the mesh's triangle order.
+json primitiveOf(const Mesh& mesh, Document& d) {
   glm::vec3 low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
   for (const glm::vec3& p : mesh.positions) low = glm::min(low, p), high = glm::max(high, p);
   json attributes;
@@ -85,20 +83,29 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
             kArrayBuffer);
   for (const Attribute& a : mesh.attributes) {
     attributes[semanticOf(a, mesh)] = d.add(a.values.data(), a.values.size() * sizeof(float),
-                                      {{"componentType", kFloat}, {"count", mesh.positions.size()}, {"type", typeOf(a.components)}},
-                                      kArrayBuffer);
+                                            {{"componentType", kFloat}, {"count", mesh.positions.size()}, {"type", typeOf(a.components)}},
+                                            kArrayBuffer);
   }
   const int indices = d.add(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3),
                             {{"componentType", kUnsignedInt}, {"count", 3 * mesh.triangles.size()}, {"type", "SCALAR"}},
                             kElementArrayBuffer);
+  return {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
+}
 
-  const Camera& camera = scene.camera;
-  const CameraSpec& spec = camera.spec();
-  json matrix = json::array();  // column-major: right, up, -forward, eye
+// The camera's node matrix, column-major (glTF looks down -Z with +Y up): right, up, -forward, eye.
+json cameraMatrix(const Camera& camera) {
+  json matrix = json::array();
   for (const glm::dvec3& column : {camera.right(), camera.up(), -camera.forward()}) {
     matrix.insert(matrix.end(), {column.x, column.y, column.z, 0.0});
   }
-  matrix.insert(matrix.end(), {spec.eye.x, spec.eye.y, spec.eye.z, 1.0});
+  const glm::dvec3& eye = camera.spec().eye;
+  matrix.insert(matrix.end(), {eye.x, eye.y, eye.z, 1.0});
+  return matrix;
+}
+
+// A perspective camera, with rastercheck's own description in its extras (the loader takes it
+// when it agrees with the glTF camera, so eye, target and up survive exactly).
+json cameraOf(const CameraSpec& spec) {
   json perspective = {{"yfov", spec.fovYDegrees * M_PI / 180.0},
                       {"aspectRatio", double(spec.width) / double(spec.height)},
                       {"znear", spec.zNear}};
@@ -111,8 +118,29 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
                       {"far", std::isfinite(spec.zFar) ? json(spec.zFar) : json(nullptr)},
                       {"width", spec.width},
                       {"height", spec.height}};
+  return {{"type", "perspective"}, {"perspective", perspective}, {"extras", {{"rastercheck_camera", exact}}}};
+}
 
-  json gltfMesh = {{"name", scene.name}, {"primitives", {{{"attributes", attributes}, {"indices", indices}, {"mode", 4}}}}};
+// GLB: the 12-byte header, the JSON chunk padded with spaces, the BIN chunk padded with zeros.
+std::string glbOf(std::string text, std::string bin, const std::string& name) {
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin += '\0';
+  const std::uint64_t total = 12 + 8 + std::uint64_t(text.size()) + 8 + bin.size();
+  if (total > 0xFFFFFFFFu) throw badInput(name, "is too large for a GLB file (4 GiB at most); write a .gltf");
+  const std::uint32_t header[3] = {0x46546C67u, 2, std::uint32_t(total)};
+  const std::uint32_t jsonChunk[2] = {std::uint32_t(text.size()), 0x4E4F534Au};
+  const std::uint32_t binChunk[2] = {std::uint32_t(bin.size()), 0x004E4942u};
+  std::string out(reinterpret_cast<const char*>(header), sizeof header);
+  out.append(reinterpret_cast<const char*>(jsonChunk), sizeof jsonChunk).append(text);
+  out.append(reinterpret_cast<const char*>(binChunk), sizeof binChunk).append(bin);
+  return out;
+}
+
+}  // namespace
+
+std::string gltfFromScene(const Scene& scene, bool binary) {
+  Document d;
+  json gltfMesh = {{"name", scene.name}, {"primitives", {primitiveOf(scene.mesh, d)}}};
   // A claim the loader checks (closedSolidProblem) before it culls back faces.
   if (scene.mesh.closedSolid) gltfMesh["extras"] = {{"rastercheck_closed_solid", true}};
   json buffer = {{"byteLength", d.bin.size()}};
@@ -121,28 +149,15 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
       {"asset", {{"version", "2.0"}, {"generator", "rastercheck " RASTERCHECK_VERSION " (rastercheck export)"}}},
       {"scene", 0},
       {"scenes", {{{"name", scene.name}, {"nodes", {0, 1}}}}},
-      {"nodes", {{{"name", scene.name}, {"mesh", 0}}, {{"name", "camera"}, {"camera", 0}, {"matrix", matrix}}}},
+      {"nodes", {{{"name", scene.name}, {"mesh", 0}}, {{"name", "camera"}, {"camera", 0}, {"matrix", cameraMatrix(scene.camera)}}}},
       {"meshes", {gltfMesh}},
-      {"cameras", {{{"type", "perspective"}, {"perspective", perspective}, {"extras", {{"rastercheck_camera", exact}}}}}},
+      {"cameras", {cameraOf(scene.camera.spec())}},
       {"buffers", {buffer}},
       {"bufferViews", d.views},
       {"accessors", d.accessors}};
   // Names may hold any bytes a file name does: invalid UTF-8 becomes U+FFFD.
   std::string text = doc.dump(binary ? -1 : 1, ' ', false, json::error_handler_t::replace);
-  if (!binary) return text + "\n";
-
-  while (text.size() % 4) text += ' ';
-  std::string bin = d.bin;
-  while (bin.size() % 4) bin += '\0';
-  const std::uint64_t total = 12 + 8 + std::uint64_t(text.size()) + 8 + bin.size();
-  if (total > 0xFFFFFFFFu) throw badInput(scene.name, "is too large for a GLB file (4 GiB at most); write a .gltf");
-  const std::uint32_t header[3] = {0x46546C67u, 2, std::uint32_t(total)};
-  const std::uint32_t jsonChunk[2] = {std::uint32_t(text.size()), 0x4E4F534Au};
-  const std::uint32_t binChunk[2] = {std::uint32_t(bin.size()), 0x004E4942u};
-  std::string out(reinterpret_cast<const char*>(header), sizeof header);
-  out.append(reinterpret_cast<const char*>(jsonChunk), sizeof jsonChunk).append(text);
-  out.append(reinterpret_cast<const char*>(binChunk), sizeof binChunk).append(bin);
-  return out;
+  return binary ? glbOf(std::move(text), d.bin, scene.name) : text + "\n";
 }
 
 }  // namespace rc
