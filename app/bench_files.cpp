@@ -78,6 +78,71 @@ BenchLoad readLoad(const nlohmann::json& j, const std::string& at) {
   return {share("other_processes"), share("steal")};
 }
 
+// One row as benchJson writes it, at `at` (the file and the JSON pointer): the fields the
+// report and the chart use, each checked for its type, and the ones placed on log axes for range.
+BenchRow readRow(const nlohmann::json& j, const std::string& at) {
+  try {
+    BenchRow r;
+    r.scene = j.at("scene").get<std::string>();
+    r.setting = j.at("setting").get<std::string>();
+    r.isDefault = j.at("default").get<bool>();
+    r.triangles = j.at("triangles").get<std::size_t>();
+    r.width = j.at("width").get<int>();
+    r.height = j.at("height").get<int>();
+    r.threads = j.at("threads").get<int>();
+    r.runs = j.value("runs", 0);
+    r.rasterMs = j.at("raster_ms").get<double>();
+    r.storeFloorMs = j.value("store_floor_ms", 0.0);
+    r.rasterIsa = j.value("raster_isa", std::string());
+    r.diagnostics = j.value("diagnostics", true);
+    r.cull = j.value("cull", std::string("auto"));
+    r.referenceIsa = j.value("reference_isa", std::string());
+    r.referenceBuild = j.value("reference_build", std::string());
+    r.speedupWithBuildQuality = j.value("speedup_with_build_quality", std::string());
+    r.referenceBuildMs = j.at("reference_build_ms").get<double>();
+    r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
+    r.speedup = j.at("speedup").get<double>();
+    r.speedupMin = j.value("speedup_min", 0.0);
+    r.speedupMax = j.value("speedup_max", 0.0);
+    r.overDefault = j.value("raster_over_default", 0.0);
+    r.overDefaultMin = j.value("raster_over_default_min", 0.0);
+    r.overDefaultMax = j.value("raster_over_default_max", 0.0);
+    r.rasterRuns = j.value("raster_ms_runs", std::vector<double>{});
+    r.traceRuns = j.value("reference_trace_ms_runs", std::vector<double>{});
+    r.baryMax = j.at("bary_max_error").get<double>();
+    r.baryP999 = j.at("bary_p999_error").get<double>();
+    r.disagreementFraction = j.at("disagreement_fraction").get<double>();
+    if (j.contains("load")) r.load = readLoad(j["load"], at + "/load");
+    // The chart places these on log axes (an error of 0 on a row of its own).
+    const auto finite = [&](const char* field, double value, bool positive) {
+      if (std::isfinite(value) && (positive ? value > 0 : value >= 0)) return;
+      throw badInput(at + "/" + field, "is " + formatNumber(value) + (positive ? "; must be finite and > 0" : "; must be finite and >= 0"));
+    };
+    finite("raster_ms", r.rasterMs, true);
+    finite("bary_p999_error", r.baryP999, false);
+    finite("disagreement_fraction", r.disagreementFraction, false);
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw badInput(at, std::string("missing or mistyped field: ") + e.what());
+  }
+}
+
+BenchMachine readMachine(const nlohmann::json& j, const std::string& at) {
+  try {
+    BenchMachine m;
+    m.cpu = j.at("cpu").get<std::string>();
+    m.logicalCpus = j.at("logical_cpus").get<int>();
+    m.widestKernelIsa = j.at("widest_kernel_isa").get<std::string>();
+    m.fastestEmbreeIsa = j.at("fastest_embree_isa").get<std::string>();
+    m.compiler = j.at("compiler").get<std::string>();
+    m.embree = j.at("embree").get<std::string>();
+    m.rastercheck = j.at("rastercheck").get<std::string>();
+    return m;
+  } catch (const nlohmann::json::exception& e) {
+    throw badInput(at, std::string("missing or mistyped field: ") + e.what());
+  }
+}
+
 }  // namespace
 
 BenchResults readBenchJson(const std::string& path) {
@@ -86,72 +151,10 @@ BenchResults readBenchJson(const std::string& path) {
     throw badInput(path, "not a rastercheck bench report (format_version 1 with rows)");
   }
   std::vector<BenchRow> rows;
-  for (std::size_t i = 0; i < doc["rows"].size(); ++i) {
-    const nlohmann::json& j = doc["rows"][i];
-    const std::string at = path + ": /rows/" + std::to_string(i);
-    try {
-      BenchRow r;
-      r.scene = j.at("scene").get<std::string>();
-      r.setting = j.at("setting").get<std::string>();
-      r.isDefault = j.at("default").get<bool>();
-      r.triangles = j.at("triangles").get<std::size_t>();
-      r.width = j.at("width").get<int>();
-      r.height = j.at("height").get<int>();
-      r.threads = j.at("threads").get<int>();
-      r.runs = j.value("runs", 0);
-      r.rasterMs = j.at("raster_ms").get<double>();
-      r.storeFloorMs = j.value("store_floor_ms", 0.0);
-      r.rasterIsa = j.value("raster_isa", std::string());
-      r.diagnostics = j.value("diagnostics", true);
-      r.cull = j.value("cull", std::string("auto"));
-      r.referenceIsa = j.value("reference_isa", std::string());
-      r.referenceBuild = j.value("reference_build", std::string());
-      r.speedupWithBuildQuality = j.value("speedup_with_build_quality", std::string());
-      r.referenceBuildMs = j.at("reference_build_ms").get<double>();
-      r.referenceTraceMs = j.at("reference_trace_ms").get<double>();
-      r.speedup = j.at("speedup").get<double>();
-      r.speedupMin = j.value("speedup_min", 0.0);
-      r.speedupMax = j.value("speedup_max", 0.0);
-      r.overDefault = j.value("raster_over_default", 0.0);
-      r.overDefaultMin = j.value("raster_over_default_min", 0.0);
-      r.overDefaultMax = j.value("raster_over_default_max", 0.0);
-      r.rasterRuns = j.value("raster_ms_runs", std::vector<double>{});
-      r.traceRuns = j.value("reference_trace_ms_runs", std::vector<double>{});
-      r.baryMax = j.at("bary_max_error").get<double>();
-      r.baryP999 = j.at("bary_p999_error").get<double>();
-      r.disagreementFraction = j.at("disagreement_fraction").get<double>();
-      if (j.contains("load")) r.load = readLoad(j["load"], at + "/load");
-      // The chart places these on log axes (an error of 0 on a row of its own).
-      const auto finite = [&](const char* field, double value, bool positive) {
-        if (std::isfinite(value) && (positive ? value > 0 : value >= 0)) return;
-        throw badInput(at + "/" + field, "is " + formatNumber(value) + (positive ? "; must be finite and > 0" : "; must be finite and >= 0"));
-      };
-      finite("raster_ms", r.rasterMs, true);
-      finite("bary_p999_error", r.baryP999, false);
-      finite("disagreement_fraction", r.disagreementFraction, false);
-      rows.push_back(r);
-    } catch (const nlohmann::json::exception& e) {
-      throw badInput(at, std::string("missing or mistyped field: ") + e.what());
-    }
-  }
+  for (std::size_t i = 0; i < doc["rows"].size(); ++i) rows.push_back(readRow(doc["rows"][i], path + ": /rows/" + std::to_string(i)));
   if (rows.empty()) throw badInput(path + ": /rows", "no rows");
   BenchResults results{rows, std::nullopt, std::nullopt};
-  if (doc.contains("machine")) {
-    const nlohmann::json& j = doc["machine"];
-    try {
-      BenchMachine m;
-      m.cpu = j.at("cpu").get<std::string>();
-      m.logicalCpus = j.at("logical_cpus").get<int>();
-      m.widestKernelIsa = j.at("widest_kernel_isa").get<std::string>();
-      m.fastestEmbreeIsa = j.at("fastest_embree_isa").get<std::string>();
-      m.compiler = j.at("compiler").get<std::string>();
-      m.embree = j.at("embree").get<std::string>();
-      m.rastercheck = j.at("rastercheck").get<std::string>();
-      results.machine = m;
-    } catch (const nlohmann::json::exception& e) {
-      throw badInput(path + ": /machine", std::string("missing or mistyped field: ") + e.what());
-    }
-  }
+  if (doc.contains("machine")) results.machine = readMachine(doc["machine"], path + ": /machine");
   if (doc.contains("load")) results.load = readLoad(doc["load"], path + ": /load");
   return results;
 }
