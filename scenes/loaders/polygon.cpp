@@ -16,6 +16,29 @@ bool inTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b, c
   return turn(a, b, p) >= 0.0 && turn(b, c, p) >= 0.0 && turn(c, a, p) >= 0.0;
 }
 
+// The corners in the polygon's plane, or none where it has no plane: Newell's normal, robust for
+// polygons that are not quite planar; projected along its largest component, mirrored where
+// needed so that the polygon turns counter-clockwise.
+std::vector<glm::dvec2> inPlane(const std::vector<glm::dvec3>& corners) {
+  const std::size_t n = corners.size();
+  glm::dvec3 normal(0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3& a = corners[i];
+    const glm::dvec3& b = corners[(i + 1) % n];
+    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (std::fabs(normal[k]) > std::fabs(normal[axis])) axis = k;
+  }
+  if (!(std::fabs(normal[axis]) > 0.0) || !std::isfinite(normal[axis])) return {};
+  const int u = normal[axis] > 0.0 ? (axis + 1) % 3 : (axis + 2) % 3;
+  const int v = normal[axis] > 0.0 ? (axis + 2) % 3 : (axis + 1) % 3;
+  std::vector<glm::dvec2> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = {corners[i][u], corners[i][v]};
+  return p;
+}
+
 }  // namespace
 
 std::vector<std::array<unsigned, 3>> triangulatePolygon(const std::vector<glm::dvec3>& corners) {
@@ -32,26 +55,11 @@ std::vector<std::array<unsigned, 3>> triangulatePolygon(const std::vector<glm::d
     next[i] = (i + 1) % n;
   }
 
-  // The plane: Newell's normal, robust for polygons that are not quite planar. Project along
-  // its largest component, mirrored where needed so that the polygon turns counter-clockwise.
-  glm::dvec3 normal(0.0);
-  for (unsigned i = 0; i < n; ++i) {
-    const glm::dvec3& a = corners[i];
-    const glm::dvec3& b = corners[next[i]];
-    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  int axis = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (std::fabs(normal[k]) > std::fabs(normal[axis])) axis = k;
-  }
-  if (n == 3 || !(std::fabs(normal[axis]) > 0.0) || !std::isfinite(normal[axis])) {
+  const std::vector<glm::dvec2> p = n == 3 ? std::vector<glm::dvec2>() : inPlane(corners);
+  if (p.empty()) {
     fanFrom(0, next);  // a triangle, or no plane to work in
     return triangles;
   }
-  const int u = normal[axis] > 0.0 ? (axis + 1) % 3 : (axis + 2) % 3;
-  const int v = normal[axis] > 0.0 ? (axis + 2) % 3 : (axis + 1) % 3;
-  std::vector<glm::dvec2> p(n);
-  for (unsigned i = 0; i < n; ++i) p[i] = {corners[i][u], corners[i][v]};
 
   // Only a reflex corner can lie in a candidate ear (a collinear one counts: it may lie on
   // the ear's edge). Cutting ears only narrows the corners beside them, but a polygon that
