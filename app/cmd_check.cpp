@@ -143,6 +143,37 @@ nlohmann::json auditToJson(const CoverageAudit& a) {
           {"ms", a.ms}};
 }
 
+// The scene's line of check's table, then its reasons and warnings (with --verbose, its whole
+// report and the coverage audit).
+void printSceneLine(const Scene& scene, const CheckResult& r, int nameWidth, bool verbose) {
+  const FamilyStats& bary = r.report.families[0].stats;
+  const FamilyStats& depth = r.report.families[1].stats;
+  const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);
+  std::printf("%-*s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", nameWidth, scene.name.c_str(), r.triangles, size.c_str(),
+              r.report.pass ? "PASS" : "FAIL", formatNumber(bary.max).c_str(), formatNumber(bary.p999).c_str(),
+              formatNumber(depth.max).c_str(), formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs,
+              r.referenceMs);
+  for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
+  for (const std::string& warning : r.report.warnings) std::printf("    warning: %s\n", warning.c_str());
+  if (verbose) std::printf("%s\n%s\n", reportToTable(r.report).c_str(), auditLine(r.audit).c_str());
+  std::fflush(stdout);
+}
+
+// The scene's row of check --json (docs/report-format.md).
+nlohmann::json checkJsonRow(const Scene& scene, const CheckResult& r, const RenderSettings& settings) {
+  return {{"scene", scene.name},
+          {"triangles", r.triangles},
+          {"mode", interpolationName(settings.raster.interpolation)},
+          {"precision", precisionName(settings.raster.precision)},
+          {"subpixel_bits", settings.raster.subpixelBits},
+          {"fill_rule", fillRuleName(settings.raster.fillRule)},
+          {"threads", resolveThreadCount(settings.threads)},
+          {"raster_ms", r.rasterMs},
+          {"reference_ms", r.referenceMs},
+          {"coverage_audit", auditToJson(r.audit)},
+          {"report", reportToJson(r.report)}};
+}
+
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
@@ -195,18 +226,8 @@ int runCheck(CheckArgs& args) {
       holdSceneToBaseline(r.report, scene.name, occurrence, r.triangles, baseline, args.baseline);
     }
     const double seconds = millisecondsSince(started) * 1e-3;
-    const FamilyStats& bary = r.report.families[0].stats;
-    const FamilyStats& depth = r.report.families[1].stats;
-    const std::string size = std::to_string(r.report.width) + "x" + std::to_string(r.report.height);
-    std::printf("%-*s %9zu %11s %-7s %9s %9s %9s %9s %9.1f %9.1f\n", nameWidth, scene.name.c_str(), r.triangles, size.c_str(),
-                r.report.pass ? "PASS" : "FAIL", formatNumber(bary.max).c_str(), formatNumber(bary.p999).c_str(),
-                formatNumber(depth.max).c_str(), formatNumber(r.report.disagreementFraction).c_str(), r.rasterMs,
-                r.referenceMs);
-    for (const std::string& reason : r.report.reasons) std::printf("    - %s\n", reason.c_str());
-    for (const std::string& warning : r.report.warnings) std::printf("    warning: %s\n", warning.c_str());
+    printSceneLine(scene, r, nameWidth, args.verbose);
     warned += !r.report.warnings.empty();
-    if (args.verbose) std::printf("%s\n%s\n", reportToTable(r.report).c_str(), auditLine(r.audit).c_str());
-    std::fflush(stdout);
     const std::string stem = fileStem(scene.name, stems);
     const ScenePictures pictures = wantPictures ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
                                                                heatmapImage(r.heatmap)}
@@ -222,18 +243,7 @@ int runCheck(CheckArgs& args) {
     }
     allPass = allPass && r.report.pass;
     reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report, auditLine(r.audit)});
-    nlohmann::json row = {{"scene", scene.name},
-                          {"triangles", r.triangles},
-                          {"mode", interpolationName(args.settings.raster.interpolation)},
-                          {"precision", precisionName(args.settings.raster.precision)},
-                          {"subpixel_bits", args.settings.raster.subpixelBits},
-                          {"fill_rule", fillRuleName(args.settings.raster.fillRule)},
-                          {"threads", resolveThreadCount(args.settings.threads)},
-                          {"raster_ms", r.rasterMs},
-                          {"reference_ms", r.referenceMs},
-                          {"coverage_audit", auditToJson(r.audit)},
-                          {"report", reportToJson(r.report)}};
-    rows.push_back(row);
+    rows.push_back(checkJsonRow(scene, r, args.settings));
     junitCases.push_back({scene.name, seconds, r.report.reasons,
                           std::to_string(r.triangles) + " triangles, " + gateFigures(r.report) + "; raster " +
                               formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms",
