@@ -129,7 +129,8 @@ void checkIndexField(const nlohmann::json& node, const std::vector<const char*>&
                      const std::string& pointer, const std::string& path) {
   if (step == field.size()) {
     if (!node.is_number_unsigned()) {
-      std::string value = node.dump();
+      std::string value = node.is_structured() ? (node.is_array() ? "an array" : "an object")
+                                               : node.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       if (value.size() > 40) value = value.substr(0, 40) + "...";
       throw badInput(path + ": " + pointer, value + " is not an index (a whole number from 0)");
     }

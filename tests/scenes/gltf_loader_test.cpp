@@ -503,12 +503,13 @@ TEST(GltfLoader, AnIndexThatIsNotAWholeNumberFromZeroIsRefusedAtItsPointer) {
       {"/meshes/0/primitives/0/targets", nlohmann::json::array({{{"POSITION", 1.0}}}), "1.0"},
       {"/accessors/0/bufferView", -4, "-4"},
       {"/bufferViews/0/buffer", nullptr, "null"},
+      {"/skins", nlohmann::json::array({{{"joints", {0}}, {"skeleton", {{"index", 0}}}}}), "an object"},
   };
   for (const auto& c : cases) {
     nlohmann::json doc = base;
     doc[nlohmann::json::json_pointer(c.pointer)] = c.value;
     std::string at = c.pointer;
-    if (c.value.is_array()) at += c.value[0].is_object() ? "/0/POSITION" : "/0";
+    if (c.value.is_array()) at += !c.value[0].is_object() ? "/0" : c.value[0].contains("skeleton") ? "/0/skeleton" : "/0/POSITION";
     expectRefusedGltf(dir, "bad.gltf", doc.dump(), {"bad.gltf: " + at + ": " + c.shown + " is not an index (a whole number from 0)"});
   }
 }
