@@ -31,6 +31,45 @@ struct BenchArgs {
   RenderSettings settings;
 };
 
+// bench's table: a line per scene and setting, then the legend.
+void printBenchTable(const std::vector<BenchRow>& rows) {
+  int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
+  for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
+  std::printf("%-*s %-31s %9s %15s %21s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
+              "raster ms", "(min..max)", "x default (per round)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
+              "(per round)", "w/build", "bary max", "bary p999", "disagree", "exr ms");
+  for (const BenchRow& r : rows) {
+    char spread[32], exr[16] = "-";
+    // One decimal, as the median has two; under a millisecond three, as the median has.
+    const char* format = r.rasterMsMin < 1 ? "(%.3f..%.3f)" : "(%.1f..%.1f)";
+    std::snprintf(spread, sizeof spread, format, r.rasterMsMin, r.rasterMsMax);
+    if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.1f", r.exrWriteMs);
+    char rounds[48];
+    std::snprintf(rounds, sizeof rounds, "(%.2f..%.2f)", r.speedupMin, r.speedupMax);
+    char overDefault[64] = "-";  // the default's own row, and a scene without one
+    if (r.overDefault > 0 && !r.isDefault) {
+      std::snprintf(overDefault, sizeof overDefault, "%.2f (%.2f..%.2f)", r.overDefault, r.overDefaultMin, r.overDefaultMax);
+    }
+    char median[32];
+    std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
+    std::printf("%-*s %-31s %9s %15s %21s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth,
+                r.scene.c_str(), (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread, overDefault,
+                formatNumber(r.trianglesPerSecond * 1e-6).c_str(), r.pixelsPerSecond * 1e-6, r.storeFloorMs, r.referenceBuildMs,
+                r.referenceTraceMs, r.speedup, rounds, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),
+                formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
+  }
+  std::printf("* default setting; x default = raster / the default's raster (medians), and per round the least and\n"
+              "  greatest of each round's frame / the default's frame (--json: raster_over_default);\n"
+              "  Mtri/s, Mpix/s = millions of triangles, of pixels rendered a second (at the median);\n"
+              "  speedup = reference trace / raster (medians), with the build quality that traced faster (ref build,\n"
+              "  ref trace: its times; --json: reference_build); per round = the least and greatest of each round's\n"
+              "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster, with the\n"
+              "  build quality whose sum is the smaller (--json: speedup_with_build_quality);\n"
+              "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
+              "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
+              "  --json adds stage times\n");
+}
+
 int runBenchCommand(BenchArgs& args) {
   finishRenderSettings(args.settings);
   if (args.settings.raster.fillRule != FillRule::kTopLeft) {
@@ -89,41 +128,7 @@ int runBenchCommand(BenchArgs& args) {
     const bool first = i == 0 || rows[i].scene != rows[i - 1].scene;
     if (first && rows[i].load && !busyNote(*rows[i].load).empty()) printLoad("  during " + rows[i].scene, *rows[i].load);
   }
-  int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
-  for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
-  std::printf("%-*s %-31s %9s %15s %21s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
-              "raster ms", "(min..max)", "x default (per round)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
-              "(per round)", "w/build", "bary max", "bary p999", "disagree", "exr ms");
-  for (const BenchRow& r : rows) {
-    char spread[32], exr[16] = "-";
-    // One decimal, as the median has two; under a millisecond three, as the median has.
-    const char* format = r.rasterMsMin < 1 ? "(%.3f..%.3f)" : "(%.1f..%.1f)";
-    std::snprintf(spread, sizeof spread, format, r.rasterMsMin, r.rasterMsMax);
-    if (r.exrWriteMs >= 0) std::snprintf(exr, sizeof exr, "%.1f", r.exrWriteMs);
-    char rounds[48];
-    std::snprintf(rounds, sizeof rounds, "(%.2f..%.2f)", r.speedupMin, r.speedupMax);
-    char overDefault[64] = "-";  // the default's own row, and a scene without one
-    if (r.overDefault > 0 && !r.isDefault) {
-      std::snprintf(overDefault, sizeof overDefault, "%.2f (%.2f..%.2f)", r.overDefault, r.overDefaultMin, r.overDefaultMax);
-    }
-    char median[32];
-    std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
-    std::printf("%-*s %-31s %9s %15s %21s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth,
-                r.scene.c_str(), (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread, overDefault,
-                formatNumber(r.trianglesPerSecond * 1e-6).c_str(), r.pixelsPerSecond * 1e-6, r.storeFloorMs, r.referenceBuildMs,
-                r.referenceTraceMs, r.speedup, rounds, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),
-                formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
-  }
-  std::printf("* default setting; x default = raster / the default's raster (medians), and per round the least and\n"
-              "  greatest of each round's frame / the default's frame (--json: raster_over_default);\n"
-              "  Mtri/s, Mpix/s = millions of triangles, of pixels rendered a second (at the median);\n"
-              "  speedup = reference trace / raster (medians), with the build quality that traced faster (ref build,\n"
-              "  ref trace: its times; --json: reference_build); per round = the least and greatest of each round's\n"
-              "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster, with the\n"
-              "  build quality whose sum is the smaller (--json: speedup_with_build_quality);\n"
-              "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
-              "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
-              "  --json adds stage times\n");
+  printBenchTable(rows);
   // Everything is made before anything is written, so that a failure (the chart's font, say)
   // leaves no file of a partial set behind.
   const BenchChart chart = args.chart.empty() ? BenchChart{} : makeBenchChart(rows, &machine, load ? &*load : nullptr, args.chart);
