@@ -44,6 +44,38 @@ Frame::Key keyOf(std::string_view key) {
   return Frame::Key::kOther;
 }
 
+// s[i] is '"': the index of its closing quote, or npos.
+std::size_t stringEnd(std::string_view s, std::size_t i) {
+  std::size_t from = i + 1;
+  for (;;) {
+    const void* q = from < s.size() ? std::memchr(s.data() + from, '"', s.size() - from) : nullptr;
+    if (!q) return std::string_view::npos;
+    const std::size_t k = std::size_t(static_cast<const char*>(q) - s.data());
+    std::size_t b = k;
+    while (b > i + 1 && s[b - 1] == '\\') --b;  // backslashes since the last quote: linear overall
+    if ((k - b) % 2 == 0) return k;
+    from = k + 1;
+  }
+}
+
+// The frame an object or array opens inside `parent` (null: at the top level).
+Frame frameUnder(const Frame* parent, bool object) {
+  Frame f;
+  f.object = object;
+  if (!parent) {
+    f.role = object ? Role::kTop : Role::kOther;
+  } else if (parent->role == Role::kTop && !object &&
+             (parent->key == Frame::Key::kBuffers || parent->key == Frame::Key::kImages)) {
+    f.role = Role::kList;
+    f.image = parent->key == Frame::Key::kImages;
+  } else if (parent->role == Role::kList && object) {
+    f.role = Role::kItem;
+    f.image = parent->image;
+    f.index = parent->index;
+  }
+  return f;
+}
+
 // Follows the JSON's brackets, strings and separators (numbers and literals are taken as any
 // run of other characters, for the parser to judge) and returns the uri strings written
 // without escapes, or nothing where the structure is broken.
@@ -52,19 +84,6 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
   std::size_t i = 0;
   const auto skipSpace = [&] {
     while (i < n && isSpace(s[i])) ++i;
-  };
-  // s[i] is '"': the index of the closing quote, or npos.
-  const auto stringEnd = [&]() -> std::size_t {
-    std::size_t from = i + 1;
-    for (;;) {
-      const void* q = from < n ? std::memchr(s.data() + from, '"', n - from) : nullptr;
-      if (!q) return std::string_view::npos;
-      const std::size_t k = std::size_t(static_cast<const char*>(q) - s.data());
-      std::size_t b = k;
-      while (b > i + 1 && s[b - 1] == '\\') --b;  // backslashes since the last quote: linear overall
-      if ((k - b) % 2 == 0) return k;
-      from = k + 1;
-    }
   };
 
   std::vector<UriString> found;
@@ -80,19 +99,7 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
         if (want == Want::kValueOrClose && c == ']') break;  // an empty array: closed below
         Frame* parent = stack.empty() ? nullptr : &stack.back();
         if (c == '{' || c == '[') {
-          Frame f;
-          f.object = c == '{';
-          if (!parent) {
-            f.role = f.object ? Role::kTop : Role::kOther;
-          } else if (parent->role == Role::kTop && !f.object &&
-                     (parent->key == Frame::Key::kBuffers || parent->key == Frame::Key::kImages)) {
-            f.role = Role::kList;
-            f.image = parent->key == Frame::Key::kImages;
-          } else if (parent->role == Role::kList && f.object) {
-            f.role = Role::kItem;
-            f.image = parent->image;
-            f.index = parent->index;
-          }
+          const Frame f = frameUnder(parent, c == '{');
           // Deeper than any glTF needs: left to the parsers (whose own stacks grow with it),
           // so that this scan's never does.
           if (stack.size() == kMaxDepth) return std::nullopt;
@@ -103,7 +110,7 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
         }
         if (!parent) return std::nullopt;  // the top level must be an object or an array
         if (c == '"') {
-          const std::size_t end = stringEnd();
+          const std::size_t end = stringEnd(s, i);
           if (end == std::string_view::npos) return std::nullopt;
           if (parent->role == Role::kItem && parent->key == Frame::Key::kUri &&
               std::memchr(s.data() + i + 1, '\\', end - i - 1) == nullptr) {
@@ -122,7 +129,7 @@ std::optional<std::vector<UriString>> findUris(std::string_view s) {
       case Want::kKey: {
         if (want == Want::kKeyOrClose && c == '}') break;  // an empty object: closed below
         if (c != '"') return std::nullopt;
-        const std::size_t end = stringEnd();
+        const std::size_t end = stringEnd(s, i);
         if (end == std::string_view::npos) return std::nullopt;
         stack.back().key = keyOf(s.substr(i + 1, end - i - 1));
         i = end + 1;
