@@ -45,8 +45,9 @@ std::string semanticOf(const Attribute& a, const Mesh& mesh) {
     const int set = setOf(a, stem);
     if (set < 0) continue;
     for (int below = 0; below < set; ++below) {
-      const auto isBelow = [&](const Attribute& b) { return setOf(b, stem) == below; };
-      if (std::none_of(mesh.attributes.begin(), mesh.attributes.end(), isBelow)) return "_" + a.name;
+      bool present = false;  // (a loop, not a lambda: Clang 14 cannot capture `stem`, a structured binding)
+      for (const Attribute& b : mesh.attributes) present = present || setOf(b, stem) == below;
+      if (!present) return "_" + a.name;
     }
     return semantic + std::to_string(set);
   }
