@@ -78,10 +78,20 @@ BenchLoad readLoad(const nlohmann::json& j, const std::string& at) {
   return {share("other_processes"), share("steal")};
 }
 
+// What `read` returns, a missing or mistyped field (nlohmann's exception) refused at `at`.
+template <class Read>
+auto readFields(const std::string& at, const Read& read) {
+  try {
+    return read();
+  } catch (const nlohmann::json::exception& e) {
+    throw badInput(at, std::string("missing or mistyped field: ") + e.what());
+  }
+}
+
 // One row as benchJson writes it, at `at` (the file and the JSON pointer): the fields the
 // report and the chart use, each checked for its type, and the ones placed on log axes for range.
 BenchRow readRow(const nlohmann::json& j, const std::string& at) {
-  try {
+  return readFields(at, [&] {
     BenchRow r;
     r.scene = j.at("scene").get<std::string>();
     r.setting = j.at("setting").get<std::string>();
@@ -122,13 +132,11 @@ BenchRow readRow(const nlohmann::json& j, const std::string& at) {
     finite("bary_p999_error", r.baryP999, false);
     finite("disagreement_fraction", r.disagreementFraction, false);
     return r;
-  } catch (const nlohmann::json::exception& e) {
-    throw badInput(at, std::string("missing or mistyped field: ") + e.what());
-  }
+  });
 }
 
 BenchMachine readMachine(const nlohmann::json& j, const std::string& at) {
-  try {
+  return readFields(at, [&] {
     BenchMachine m;
     m.cpu = j.at("cpu").get<std::string>();
     m.logicalCpus = j.at("logical_cpus").get<int>();
@@ -138,9 +146,7 @@ BenchMachine readMachine(const nlohmann::json& j, const std::string& at) {
     m.embree = j.at("embree").get<std::string>();
     m.rastercheck = j.at("rastercheck").get<std::string>();
     return m;
-  } catch (const nlohmann::json::exception& e) {
-    throw badInput(at, std::string("missing or mistyped field: ") + e.what());
-  }
+  });
 }
 
 }  // namespace

@@ -158,7 +158,7 @@ std::string gltfFromScene(const Scene& scene, bool binary) {
       {"accessors", d.accessors}};
   // Names may hold any bytes a file name does: invalid UTF-8 becomes U+FFFD.
   std::string text = doc.dump(binary ? -1 : 1, ' ', false, json::error_handler_t::replace);
-  return binary ? glbOf(std::move(text), d.bin, scene.name) : text + "\n";
+  return binary ? glbOf(std::move(text), std::move(d.bin), scene.name) : text + "\n";
 }
 
 }  // namespace rc
