@@ -103,52 +103,159 @@ void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const st
 
 namespace {
 
-// Where glTF puts the indices rastercheck follows: "[]" steps into each element of an array,
-// "{}" into each member of an object.
-const std::vector<std::vector<const char*>> kIndexFields = {
-    {"scene"},
-    {"scenes", "[]", "nodes", "[]"},
-    {"nodes", "[]", "camera"},
-    {"nodes", "[]", "mesh"},
-    {"nodes", "[]", "skin"},
-    {"nodes", "[]", "children", "[]"},
-    {"nodes", "[]", "extensions", "EXT_mesh_gpu_instancing", "attributes", "{}"},
-    {"meshes", "[]", "primitives", "[]", "indices"},
-    {"meshes", "[]", "primitives", "[]", "attributes", "{}"},
-    {"meshes", "[]", "primitives", "[]", "targets", "[]", "{}"},
-    {"accessors", "[]", "bufferView"},
-    {"accessors", "[]", "sparse", "indices", "bufferView"},
-    {"accessors", "[]", "sparse", "values", "bufferView"},
-    {"bufferViews", "[]", "buffer"},
-    {"skins", "[]", "inverseBindMatrices"},
-    {"skins", "[]", "skeleton"},
-    {"skins", "[]", "joints", "[]"},
+// What a field must hold, and how a refusal says so.
+struct Rule {
+  const char* what;  // "an index (a whole number from 0)"
+  bool (*holds)(const nlohmann::json&);
 };
 
-void checkIndexField(const nlohmann::json& node, const std::vector<const char*>& field, std::size_t step,
-                     const std::string& pointer, const std::string& path) {
-  if (step == field.size()) {
-    if (!node.is_number_unsigned()) {
-      std::string value = node.is_structured() ? (node.is_array() ? "an array" : "an object")
-                                               : node.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-      if (value.size() > 40) value = value.substr(0, 40) + "...";
-      throw badInput(path + ": " + pointer, value + " is not an index (a whole number from 0)");
+bool isWhole(const nlohmann::json& v) { return v.is_number_unsigned(); }
+bool isNumber(const nlohmann::json& v) { return v.is_number(); }
+
+template <std::size_t N>
+bool isNumbers(const nlohmann::json& v) {
+  return v.is_array() && (N == 0 || v.size() == N) && std::all_of(v.begin(), v.end(), isNumber);
+}
+
+const Rule kIndex{"an index (a whole number from 0)", isWhole};
+const Rule kWhole{"a whole number from 0", isWhole};
+const Rule kCount{"a count (a whole number from 1)", [](const nlohmann::json& v) { return isWhole(v) && v.get<std::uint64_t>() >= 1; }};
+const Rule kStride{"a byteStride (a multiple of 4 from 4 to 252)", [](const nlohmann::json& v) {
+                     // 0, which glTF 1.0 wrote for tightly packed, means what an absent byteStride does.
+                     return isWhole(v) && v.get<std::uint64_t>() <= 252 && v.get<std::uint64_t>() % 4 == 0;
+                   }};
+const Rule kComponentType{"a componentType (5120 BYTE, 5121 UNSIGNED_BYTE, 5122 SHORT, 5123 UNSIGNED_SHORT, 5125 UNSIGNED_INT or 5126 FLOAT)",
+                          [](const nlohmann::json& v) {
+                            const std::uint64_t types[] = {5120, 5121, 5122, 5123, 5125, 5126};
+                            return isWhole(v) && std::find(std::begin(types), std::end(types), v.get<std::uint64_t>()) != std::end(types);
+                          }};
+const Rule kAccessorType{"an accessor type (SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4)", [](const nlohmann::json& v) {
+                           const char* types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+                           return v.is_string() && std::find(std::begin(types), std::end(types), v.get<std::string>()) != std::end(types);
+                         }};
+const Rule kTopology{"a topology (a whole number from 0 to 6)", [](const nlohmann::json& v) { return isWhole(v) && v.get<std::uint64_t>() <= 6; }};
+const Rule kBoolean{"true or false", [](const nlohmann::json& v) { return v.is_boolean(); }};
+const Rule kString{"a string", [](const nlohmann::json& v) { return v.is_string(); }};
+const Rule kObject{"an object", [](const nlohmann::json& v) { return v.is_object(); }};
+const Rule kArray{"an array", [](const nlohmann::json& v) { return v.is_array(); }};
+const Rule kNonEmptyArray{"an array of at least one element", [](const nlohmann::json& v) { return v.is_array() && !v.empty(); }};
+const Rule kNumbers{"an array of numbers", isNumbers<0>};
+const Rule kVec3{"an array of 3 numbers", isNumbers<3>};
+const Rule kVec4{"an array of 4 numbers", isNumbers<4>};
+const Rule kMat4{"an array of 16 numbers", isNumbers<16>};
+
+// A field rastercheck reads: its place ("[]" steps into each element of an array, "{}" into each
+// member of an object), what it must hold, and whether glTF requires it. Containers come before
+// what they hold, so that "[]" and "{}" only ever step into the shape their rule checked, and
+// an array comes before the indices into it.
+struct Field {
+  std::vector<const char*> steps;
+  const Rule* rule;
+  bool required = false;
+  const char* names = nullptr;  // for an index: the array whose elements it names
+};
+
+const std::vector<Field> kFields = {
+    {{"scenes"}, &kArray},
+    {{"nodes"}, &kArray},
+    {{"cameras"}, &kArray},
+    {{"meshes"}, &kArray},
+    {{"accessors"}, &kArray},
+    {{"bufferViews"}, &kArray},
+    {{"buffers"}, &kArray},
+    {{"skins"}, &kArray},
+    {{"asset"}, &kObject, true},
+    {{"asset", "version"}, &kString, true},
+    {{"scene"}, &kIndex, false, "scenes"},
+    {{"scenes", "[]"}, &kObject},
+    {{"scenes", "[]", "nodes"}, &kArray},
+    {{"scenes", "[]", "nodes", "[]"}, &kIndex, false, "nodes"},
+    {{"nodes", "[]"}, &kObject},
+    {{"nodes", "[]", "camera"}, &kIndex, false, "cameras"},
+    {{"nodes", "[]", "mesh"}, &kIndex, false, "meshes"},
+    {{"nodes", "[]", "skin"}, &kIndex, false, "skins"},
+    {{"nodes", "[]", "children"}, &kArray},
+    {{"nodes", "[]", "children", "[]"}, &kIndex, false, "nodes"},
+    {{"nodes", "[]", "matrix"}, &kMat4},
+    {{"nodes", "[]", "translation"}, &kVec3},
+    {{"nodes", "[]", "rotation"}, &kVec4},
+    {{"nodes", "[]", "scale"}, &kVec3},
+    {{"nodes", "[]", "weights"}, &kNumbers},
+    {{"nodes", "[]", "extensions", "EXT_mesh_gpu_instancing", "attributes"}, &kObject},
+    {{"nodes", "[]", "extensions", "EXT_mesh_gpu_instancing", "attributes", "{}"}, &kIndex, false, "accessors"},
+    {{"meshes", "[]"}, &kObject},
+    {{"meshes", "[]", "primitives"}, &kNonEmptyArray, true},
+    {{"meshes", "[]", "primitives", "[]"}, &kObject},
+    {{"meshes", "[]", "primitives", "[]", "attributes"}, &kObject, true},
+    {{"meshes", "[]", "primitives", "[]", "attributes", "{}"}, &kIndex, false, "accessors"},
+    {{"meshes", "[]", "primitives", "[]", "indices"}, &kIndex, false, "accessors"},
+    {{"meshes", "[]", "primitives", "[]", "mode"}, &kTopology},
+    {{"meshes", "[]", "primitives", "[]", "targets"}, &kArray},
+    {{"meshes", "[]", "primitives", "[]", "targets", "[]"}, &kObject},
+    {{"meshes", "[]", "primitives", "[]", "targets", "[]", "{}"}, &kIndex, false, "accessors"},
+    {{"meshes", "[]", "weights"}, &kNumbers},
+    {{"accessors", "[]"}, &kObject},
+    {{"accessors", "[]", "bufferView"}, &kIndex, false, "bufferViews"},
+    {{"accessors", "[]", "byteOffset"}, &kWhole},
+    {{"accessors", "[]", "componentType"}, &kComponentType, true},
+    {{"accessors", "[]", "normalized"}, &kBoolean},
+    {{"accessors", "[]", "count"}, &kCount, true},
+    {{"accessors", "[]", "type"}, &kAccessorType, true},
+    {{"accessors", "[]", "sparse"}, &kObject},
+    {{"accessors", "[]", "sparse", "count"}, &kWhole, true},
+    {{"accessors", "[]", "sparse", "indices"}, &kObject, true},
+    {{"accessors", "[]", "sparse", "indices", "bufferView"}, &kIndex, true, "bufferViews"},
+    {{"accessors", "[]", "sparse", "indices", "byteOffset"}, &kWhole},
+    {{"accessors", "[]", "sparse", "indices", "componentType"}, &kWhole, true},
+    {{"accessors", "[]", "sparse", "values"}, &kObject, true},
+    {{"accessors", "[]", "sparse", "values", "bufferView"}, &kIndex, true, "bufferViews"},
+    {{"accessors", "[]", "sparse", "values", "byteOffset"}, &kWhole},
+    {{"bufferViews", "[]"}, &kObject},
+    {{"bufferViews", "[]", "buffer"}, &kIndex, true, "buffers"},
+    {{"bufferViews", "[]", "byteOffset"}, &kWhole},
+    {{"bufferViews", "[]", "byteLength"}, &kCount, true},
+    {{"bufferViews", "[]", "byteStride"}, &kStride},
+    {{"buffers", "[]"}, &kObject},
+    {{"buffers", "[]", "byteLength"}, &kCount, true},
+    {{"skins", "[]"}, &kObject},
+    {{"skins", "[]", "inverseBindMatrices"}, &kIndex, false, "accessors"},
+    {{"skins", "[]", "skeleton"}, &kIndex, false, "nodes"},
+    {{"skins", "[]", "joints"}, &kNonEmptyArray, true},
+    {{"skins", "[]", "joints", "[]"}, &kIndex, false, "nodes"},
+};
+
+void checkField(const nlohmann::json& doc, const nlohmann::json& node, const Field& field, std::size_t step,
+                const std::string& pointer, const std::string& path) {
+  if (step == field.steps.size()) {
+    if (field.rule->holds(node) && field.names) {
+      const std::size_t size = doc.contains(field.names) ? doc[field.names].size() : 0;
+      if (node.get<std::uint64_t>() >= size) {
+        throw badInput(path + ": " + pointer, node.dump() + " is past the end of /" + field.names + " (it holds " +
+                                                   std::to_string(size) + (size == 1 ? " element)" : " elements)"));
+      }
+    } else if (!field.rule->holds(node)) {
+      std::string value = node.is_object() ? "an object" : node.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+      if (value.size() > 40) value = node.is_array() ? "an array of " + std::to_string(node.size()) + " elements" : value.substr(0, 40) + "...";
+      throw badInput(path + ": " + pointer, value + " is not " + field.rule->what);
     }
     return;
   }
-  const std::string_view key = field[step];
-  if (key == "[]" || key == "{}") {
-    if (key == "[]" ? !node.is_array() : !node.is_object()) return;  // tinygltf reports the shape
-    for (const auto& [name, item] : node.items()) checkIndexField(item, field, step + 1, pointer + "/" + name, path);
-  } else if (node.is_object() && node.contains(field[step])) {
-    checkIndexField(node[field[step]], field, step + 1, pointer + "/" + field[step], path);
+  const std::string_view key = field.steps[step];
+  if (key == "[]" || key == "{}") {  // the shape was checked by the container's own field
+    if (key == "[]" ? !node.is_array() : !node.is_object()) return;
+    for (const auto& [name, item] : node.items()) checkField(doc, item, field, step + 1, pointer + "/" + name, path);
+  } else if (node.is_object() && node.contains(key)) {
+    checkField(doc, node[std::string(key)], field, step + 1, pointer + "/" + std::string(key), path);
+  } else if (field.required && step + 1 == field.steps.size() && node.is_object()) {
+    throw badInput(path + ": " + pointer + "/" + std::string(key), "is missing; glTF requires " + std::string(field.rule->what) + " here");
   }
 }
 
 }  // namespace
 
-void checkIndexFields(const nlohmann::json& doc, const std::string& path) {
-  for (const std::vector<const char*>& field : kIndexFields) checkIndexField(doc, field, 0, "", path);
+void checkFields(const nlohmann::json& doc, const std::string& path) {
+  if (!doc.is_object()) throw badInput(path, "the JSON is not an object, as a glTF file's must be");
+  for (const Field& field : kFields) checkField(doc, doc, field, 0, "", path);
 }
 
 namespace {

@@ -31,10 +31,15 @@ nlohmann::json parseJson(std::string_view original, const EmbeddedData& embedded
 // takeDataUris took must hold at least one byte, and as many as its byteLength says.
 void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const std::string& path);
 
-// Refuses (badInput naming the JSON pointer) an index rastercheck follows (a scene's nodes, a
-// node's mesh, camera, skin and children, a primitive's indices and attributes, an accessor's
-// bufferView...) that is not a whole number from 0: tinygltf reads a negative one as absent.
-void checkIndexFields(const nlohmann::json& doc, const std::string& path);
+// Refuses (badInput naming the JSON pointer) a field rastercheck reads that is missing where
+// glTF requires it or holds what glTF does not allow there, before tinygltf reads the file:
+// tinygltf reads a negative index as absent, drops a node's translation of two numbers or a
+// byteOffset of -4 without a word, and refuses a missing count without saying which accessor's.
+// The fields: every index followed (a scene's nodes, a node's mesh, camera, skin and children, a
+// primitive's indices and attributes, an accessor's bufferView...), the containers that hold
+// them, a node's transform and morph weights, and the accessor, buffer view and buffer fields
+// that place the data (counts, offsets, strides, component and element types).
+void checkFields(const nlohmann::json& doc, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:

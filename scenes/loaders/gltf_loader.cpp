@@ -454,11 +454,9 @@ struct Walker {
       std::vector<Mesh> parts;
       std::size_t triangles = 0;
       for (std::size_t i = 0; i < primitives.size(); ++i) {
-        const int mode = primitives[i].mode;  // tinygltf gives TRIANGLES where the file has no mode
+        // tinygltf gives TRIANGLES where the file has no mode; checkFields has refused any but 0 to 6.
+        const int mode = primitives[i].mode;
         const std::string at = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(i) + "]";
-        if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
-          throw badInput(at + ".mode", std::to_string(mode) + " is not a glTF topology (0 to 6)");
-        }
         if (mode < TINYGLTF_MODE_TRIANGLES) continue;  // points and lines: no surface
         // Nor a primitive without positions, which the specification says to skip (3.7.2.1).
         if (primitives[i].attributes.count("POSITION") == 0) continue;
@@ -491,7 +489,7 @@ GltfContent loadGltf(const std::string& path, TriangleBudget budget) {
   gltf::EmbeddedData embedded = gltf::takeDataUris(json, path);
   nlohmann::json doc = gltf::parseJson(json, embedded, path);
   gltf::checkUris(doc, embedded, path);
-  gltf::checkIndexFields(doc, path);
+  gltf::checkFields(doc, path);
   const gltf::MeshoptPlan meshopt = gltf::planMeshopt(std::move(doc), path);
   // The JSON tinygltf reads: the meshopt plan's, else the one without data URIs, else the file's.
   const std::string& newJson = meshopt.changed ? meshopt.json : embedded.json;

@@ -375,8 +375,8 @@ TEST(GltfLoader, VertexCountsAndModesTheSpecificationForbidsAreRefused) {
   expectRefusedGltf(dir, "short-strip.gltf", topologyGltf(5, square, {0, 1}),
                     {"meshes[0].primitives[0]: 2 vertices are too few for mode TRIANGLE_STRIP (it takes 3 or more)"});
   expectRefusedGltf(dir, "short-fan.gltf", topologyGltf(6, square, {3, 2}), {"2 vertices are too few for mode TRIANGLE_FAN"});
-  expectRefusedGltf(dir, "mode7.gltf", topologyGltf(7, square), {"mode7.gltf: meshes[0].primitives[0].mode: 7 is not a glTF topology (0 to 6)"});
-  expectRefusedGltf(dir, "negative.gltf", topologyGltf(-1, square), {"primitives[0].mode: -1 is not a glTF topology"});
+  expectRefusedGltf(dir, "mode7.gltf", topologyGltf(7, square), {"mode7.gltf: /meshes/0/primitives/0/mode: 7 is not a topology (a whole number from 0 to 6)"});
+  expectRefusedGltf(dir, "negative.gltf", topologyGltf(-1, square), {"/primitives/0/mode: -1 is not a topology"});
   // Points and lines carry no surface and are passed over, whatever their count.
   GltfBuilder b;
   b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0})), 4));
@@ -438,13 +438,13 @@ TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
                       {"stride8.gltf: accessors[0]: byteStride 8 is not between the element size 12 and 252"});
     GltfBuilder c;
     c.accessor(denseVec3(c.view(triangle + std::string(3 * 256 - 36, '\0'), 256), 3));
-    expectRefusedGltf(dir, "stride256.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"stride256.gltf: not a valid glTF 2.0 file", "byteStride"});
+    expectRefusedGltf(dir, "stride256.gltf", c.text(R"("attributes": {"POSITION": 0})"), {"stride256.gltf: /bufferViews/0/byteStride: 256 is not a byteStride (a multiple of 4 from 4 to 252)"});
   }
-  {  // an accessor index past the file's accessors (tinygltf refuses it first, as it does the stride of 256)
+  {  // an accessor index past the file's accessors, refused at its pointer before tinygltf reads the file
     GltfBuilder b;
     b.accessor(denseVec3(b.view(triangle), 3));
     expectRefusedGltf(dir, "no-accessor.gltf", b.text(R"("attributes": {"POSITION": 0}, "indices": 4)"),
-                      {"no-accessor.gltf: not a valid glTF 2.0 file", "indices accessor out of bounds"});
+                      {"no-accessor.gltf: /meshes/0/primitives/0/indices: 4 is past the end of /accessors (it holds 1 element)"});
   }
   {  // an attribute, a morph target, a skin or an instance field naming an accessor the file has not
     GltfBuilder b;
@@ -455,21 +455,21 @@ TEST(GltfLoader, BadAccessorsAndAttributesAreRefusedNamingTheirPlace) {
       std::string message;
     } cases[] = {
         {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 7; },
-         "meshes[0].primitives[0].attributes.NORMAL: names accessor 7, which the file does not have (it has 1)"},
+         "/meshes/0/primitives/0/attributes/NORMAL: 7 is past the end of /accessors (it holds 1 element)"},
         {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["attributes"]["_heat"] = 2; },
-         "meshes[0].primitives[0].attributes._heat: names accessor 2,"},
+         "/meshes/0/primitives/0/attributes/_heat: 2 is past the end of /accessors"},
         {[](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["targets"] = nlohmann::json::parse(R"([{"POSITION": 3}])"); },
-         "meshes[0].primitives[0].targets[0].POSITION: names accessor 3,"},
+         "/meshes/0/primitives/0/targets/0/POSITION: 3 is past the end of /accessors"},
         {[](nlohmann::json& d) {
            d["skins"] = nlohmann::json::parse(R"([{"joints": [0], "inverseBindMatrices": 5}])");
            d["nodes"][0]["skin"] = 0;
          },
-         "skins[0].inverseBindMatrices: names accessor 5,"},
+         "/skins/0/inverseBindMatrices: 5 is past the end of /accessors"},
         {[](nlohmann::json& d) {
            d["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
            d["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] = 6;
          },
-         "/attributes/TRANSLATION: names accessor 6,"},
+         "/nodes/0/extensions/EXT_mesh_gpu_instancing/attributes/TRANSLATION: 6 is past the end of /accessors"},
     };
     for (const auto& c : cases) {
       nlohmann::json doc = base;
@@ -509,6 +509,62 @@ TEST(GltfLoader, AnIndexThatIsNotAWholeNumberFromZeroIsRefusedAtItsPointer) {
     nlohmann::json doc = base;
     doc[nlohmann::json::json_pointer(c.pointer)] = c.value;
     expectRefusedGltf(dir, "bad.gltf", doc.dump(), {std::string("bad.gltf: ") + c.refused + " is not an index (a whole number from 0)"});
+  }
+}
+
+// tinygltf dropped a node's translation of two numbers, a byteOffset of -4 or a normalized of
+// "yes" without a word (and read the data as if they were absent), and refused a missing count
+// without saying which accessor's. Each field rastercheck reads is checked at its pointer first.
+TEST(GltfLoader, AFieldMissingOrMalformedIsRefusedAtItsPointer) {
+  TempDir dir;
+  GltfBuilder b;
+  b.accessor(denseVec3(b.view(bytesOf<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})), 3));
+  const nlohmann::json base = nlohmann::json::parse(b.text(R"("attributes": {"POSITION": 0})"));
+  nlohmann::json packed = base;  // glTF 1.0's byteStride 0, tightly packed, means what none does
+  packed["bufferViews"][0]["byteStride"] = 0;
+  EXPECT_EQ(loadGltf(dir.write("packed.gltf", packed.dump())).mesh.triangleCount(), 1u);
+  const nlohmann::json erase;  // a case's value: the field is taken out
+  const struct {
+    const char* pointer;
+    nlohmann::json value;
+    const char* refused;  // what follows "bad.gltf: "
+  } cases[] = {
+      {"/asset/version", erase, "/asset/version: is missing; glTF requires a string here"},
+      {"/accessors/0/count", erase, "/accessors/0/count: is missing; glTF requires a count (a whole number from 1) here"},
+      {"/accessors/0/componentType", erase, "/accessors/0/componentType: is missing; glTF requires a componentType (5120 BYTE,"},
+      {"/bufferViews/0/byteLength", erase, "/bufferViews/0/byteLength: is missing; glTF requires a count"},
+      {"/meshes/0/primitives/0/attributes", erase, "/meshes/0/primitives/0/attributes: is missing; glTF requires an object here"},
+      {"/accessors/0/sparse", {{"count", 1}, {"indices", {{"bufferView", 0}, {"componentType", 5125}}}},
+       "/accessors/0/sparse/values: is missing; glTF requires an object here"},
+      {"/accessors/0/count", 0, "/accessors/0/count: 0 is not a count (a whole number from 1)"},
+      {"/accessors/0/byteOffset", -4, "/accessors/0/byteOffset: -4 is not a whole number from 0"},
+      {"/bufferViews/0/byteOffset", 2.5, "/bufferViews/0/byteOffset: 2.5 is not a whole number from 0"},
+      {"/bufferViews/0/byteStride", 6, "/bufferViews/0/byteStride: 6 is not a byteStride (a multiple of 4 from 4 to 252)"},
+      {"/accessors/0/componentType", 5124, "/accessors/0/componentType: 5124 is not a componentType"},
+      {"/accessors/0/type", "VEC5", "/accessors/0/type: \"VEC5\" is not an accessor type (SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4)"},
+      {"/accessors/0/normalized", "yes", "/accessors/0/normalized: \"yes\" is not true or false"},
+      {"/meshes/0/primitives/0/mode", "4", "/meshes/0/primitives/0/mode: \"4\" is not a topology (a whole number from 0 to 6)"},
+      {"/meshes/0/primitives", nlohmann::json::array(), "/meshes/0/primitives: [] is not an array of at least one element"},
+      {"/meshes/0/weights", "x", "/meshes/0/weights: \"x\" is not an array of numbers"},
+      {"/nodes/0/translation", {1, 2}, "/nodes/0/translation: [1,2] is not an array of 3 numbers"},
+      {"/nodes/0/rotation", {0, 0, 0, "1"}, "/nodes/0/rotation: [0,0,0,\"1\"] is not an array of 4 numbers"},
+      {"/nodes/0/scale", {1, 1, 1, 1}, "/nodes/0/scale: [1,1,1,1] is not an array of 3 numbers"},
+      {"/nodes/0/matrix", std::vector<int>(15, 0), "/nodes/0/matrix: [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0] is not an array of 16 numbers"},
+      {"/nodes", {{"a", 1}}, "/nodes: an object is not an array"},
+      {"/scenes/0", 0, "/scenes/0: 0 is not an object"},
+      {"/scene", 3, "/scene: 3 is past the end of /scenes (it holds 1 element)"},
+      {"/nodes/0/camera", 0, "/nodes/0/camera: 0 is past the end of /cameras (it holds 0 elements)"},
+      {"/accessors/0/bufferView", 1, "/accessors/0/bufferView: 1 is past the end of /bufferViews (it holds 1 element)"},
+  };
+  for (const auto& c : cases) {
+    nlohmann::json doc = base;
+    const nlohmann::json::json_pointer pointer(c.pointer);
+    if (c.value.is_null()) {
+      doc[pointer.parent_pointer()].erase(pointer.back());
+    } else {
+      doc[pointer] = c.value;
+    }
+    expectRefusedGltf(dir, "bad.gltf", doc.dump(), {std::string("bad.gltf: ") + c.refused});
   }
 }
 
@@ -966,7 +1022,7 @@ TEST(GltfLoader, SkinnedMeshesStandAsTheirJointsDo) {
       [&] { loadGltf(dir.write("bind.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1, 2, 0], "inverseBindMatrices": 6})"))); },
       ExitCode::kBadInput, {"skins[0]", "fewer inverseBindMatrices than joints"}, "too few bind matrices");
   testing::expectError([&] { loadGltf(dir.write("node.gltf", file(R"("translation": [0, 1, 0])", R"({"joints": [1, 9]})"))); },
-                       ExitCode::kBadInput, {"skins[0]", "joint 1 names no node"}, "joint node");
+                       ExitCode::kBadInput, {"node.gltf: /skins/0/joints/1: 9 is past the end of /nodes (it holds 3 elements)"}, "joint node");
   // Joints 3 and 4, outside the scene, each the other's child.
   nlohmann::json cyclic = nlohmann::json::parse(file(R"("translation": [0, 1, 0])", R"({"joints": [3, 2]})"));
   cyclic["nodes"].push_back({{"children", {4}}});
