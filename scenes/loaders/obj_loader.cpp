@@ -79,12 +79,23 @@ const char* faceCornerProblem(std::string_view corner) {
   return index(rest.substr(second + 1));
 }
 
+// What a v, vt or vn statement of `count` numbers should have been, or nullptr if it is one the
+// parser reads in full. It reads a vertex's x, y and z and then a colour (r g b) or nothing, so
+// "v 0 0" is (0, 0, 0) to it and w (OBJ's weight for rational curves, which polygons ignore) a
+// colour cut short; vt's u and optional v and w; vn's x, y and z, taking what is missing as 0.
+const char* numbersProblem(std::string_view keyword, std::size_t count) {
+  if (keyword == "v") return count == 3 || count == 4 || count == 6 ? nullptr : "3 (x y z), 4 (x y z w) or 6 (x y z r g b)";
+  if (keyword == "vt") return count >= 1 && count <= 3 ? nullptr : "1 to 3 (u [v [w]])";
+  return count == 3 ? nullptr : "3 (x y z)";
+}
+
 // Checks, in one pass over the lines, what tinyobjloader would misread without a word, and
 // returns the line numbers of the face statements ("f ..."), to name the place of a bad face:
 // - every number of a v, vt or vn statement must parse completely, with std::from_chars (the
-//   locale never matters), and be finite as a float (the parser reads "nan" or "abc" as 0);
-// - every corner of a face must be one faceCornerProblem accepts, and a face may have at most
-//   kMaxCorners corners;
+//   locale never matters), and be finite as a float (the parser reads "nan" or "abc" as 0),
+//   and the statement must have as many as numbersProblem accepts;
+// - every corner of a face must be one faceCornerProblem accepts, and a face must have 3 to
+//   kMaxCorners corners (the parser drops a face of 2);
 // - the triangles (n - 2 for a face of n corners) must not take the scene past the budget.
 std::vector<std::size_t> checkStatements(std::string_view text, const std::string& path, TriangleBudget budget) {
   const auto blank = [](char c) { return c == ' ' || c == '\t'; };
@@ -103,7 +114,7 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
     if (!face && keyword != "v" && keyword != "vt" && keyword != "vn") return;
     if (face) faceLines.push_back(line);
     const auto where = [&] { return path + ":" + std::to_string(line); };
-    std::size_t corners = 0;
+    std::size_t items = 0;  // numbers, or a face's corners
     for (std::size_t k = keywordEnd; k < size;) {
       while (k < size && blank(statement[k])) ++k;
       if (k == size) break;
@@ -114,7 +125,6 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
         if (const char* problem = faceCornerProblem(token)) {
           throw badInput(where(), "'" + std::string(token.substr(0, 40)) + "' " + problem);
         }
-        ++corners;
       } else {
         float value = 0.0f;
         const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
@@ -122,14 +132,23 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
           throw badInput(where(), "'" + std::string(token.substr(0, 40)) + "' is not a finite float");
         }
       }
+      ++items;
       k = end;
     }
-    if (!face) return;
+    if (!face) {
+      if (const char* takes = numbersProblem(keyword, items)) {
+        throw badInput(where(), std::string(keyword) + " has " + std::to_string(items) + (items == 1 ? " number" : " numbers") +
+                                    "; it takes " + takes);
+      }
+      return;
+    }
+    const std::size_t corners = items;
+    if (corners < 3) throw badInput(where(), "face has " + std::to_string(corners) + (corners == 1 ? " corner" : " corners") + "; 3 or more are needed");
     if (corners > kMaxCorners) {
       throw badInput(where(), "face has " + std::to_string(corners) + " corners; at most " + std::to_string(kMaxCorners) +
                                   " are read (split it)");
     }
-    const std::size_t adding = corners >= 3 ? corners - 2 : 0;
+    const std::size_t adding = corners - 2;
     checkTriangleBudget(triangles, adding, budget.limit, where, [] { return std::string("this face"); });
     triangles += adding;
   });
@@ -254,7 +273,6 @@ Mesh loadObj(const std::string& path, TriangleBudget budget) {
   // A corner is its (v, vt, vn): corners that share all three share a vertex of the mesh.
   std::unordered_map<CornerKey, unsigned, CornerHash> corners;
   forEachFace(parsed.shapes, [&](std::size_t face, const tinyobj::index_t* faceCorners, unsigned arity) {
-    if (arity < 3) throw badInput(where(face), "face has " + std::to_string(arity) + " vertices; 3 or more needed");
     std::vector<unsigned> polygon;
     for (unsigned k = 0; k < arity; ++k) {
       const tinyobj::index_t& index = faceCorners[k];
@@ -262,8 +280,11 @@ Mesh loadObj(const std::string& path, TriangleBudget budget) {
         throw badInput(where(face), "vertex index out of range (the file has " + std::to_string(vertexCount) +
                                         " vertices; indices start at 1, negative ones count back)");
       }
-      if ((all.uv && index.texcoord_index >= uvCount) || (all.normal && index.normal_index >= normalCount)) {
-        throw badInput(where(face), "texture coordinate or normal index out of range");
+      if (all.uv && index.texcoord_index >= uvCount) {
+        throw badInput(where(face), "texture coordinate (vt) index out of range (the file has " + std::to_string(uvCount) + ")");
+      }
+      if (all.normal && index.normal_index >= normalCount) {
+        throw badInput(where(face), "normal (vn) index out of range (the file has " + std::to_string(normalCount) + ")");
       }
       const CornerKey key{index.vertex_index, all.uv ? index.texcoord_index : -1, all.normal ? index.normal_index : -1};
       auto [it, inserted] = corners.try_emplace(key, unsigned(mesh.positions.size()));

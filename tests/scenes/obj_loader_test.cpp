@@ -133,7 +133,15 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
       {"slashes.obj", v + "f 1/1/1/1 2 3\n", "slashes.obj:4: '1/1/1/1' is not a face corner"},
       {"range.obj", v + "\n\nf 1 2 9\n", "range.obj:6"},
       {"behind.obj", v + "f -99 1 2\n", "behind.obj"},
-      {"two.obj", v + "f 1 2\n", "two.obj"},
+      {"two.obj", v + "f 1 2\n", "two.obj:4: face has 2 corners; 3 or more are needed"},
+      {"twolater.obj", v + "f 1 2 3\nf 3 1\n", "twolater.obj:5: face has 2 corners"},  // the parser dropped it
+      // the parser reads a missing coordinate as 0 and a seventh number not at all
+      {"vshort.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vshort.obj:1: v has 2 numbers; it takes 3 (x y z), 4 (x y z w) or 6 (x y z r g b)"},
+      {"vlong.obj", "v 0 0 0 1 1 1 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vlong.obj:1: v has 7 numbers"},
+      {"vnshort.obj", v + "vn 0 1\nf 1//1 2//1 3//1\n", "vnshort.obj:4: vn has 2 numbers; it takes 3 (x y z)"},
+      {"vtlong.obj", v + "vt 0 0 0 0\nf 1/1 2/1 3/1\n", "vtlong.obj:4: vt has 4 numbers; it takes 1 to 3 (u [v [w]])"},
+      {"vtrange.obj", v + "vt 0 0\nf 1/1 2/2 3/1\n", "vtrange.obj:5: texture coordinate (vt) index out of range (the file has 1)"},
+      {"vnrange.obj", v + "vn 0 0 1\nf 1//1 2//1 3//2\n", "vnrange.obj:5: normal (vn) index out of range (the file has 1)"},
       {"mixed.obj", v + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n", "mixed.obj:6"},
       {"nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:1"},
       {"inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "inf.obj:2"},
@@ -162,6 +170,20 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
   EXPECT_EQ(loadObj(dir.write("255.obj", ring + face + "\n")).triangleCount(), 253u);
   testing::expectError([&] { loadObj(dir.write("256.obj", ring + face + " 256\nf 1 2 3\n")); }, ExitCode::kBadInput,
                        {"256.obj:257", "face has 256 corners; at most 255 are read"}, "256 corners");
+}
+
+// What OBJ lets a statement leave out or add is read as OBJ says: a vertex's w (which only
+// rational curves use) and a colour (which rastercheck does not read) are ignored, and a
+// texture coordinate's missing v is 0.
+TEST(ObjLoader, OptionalNumbersAreReadAsObjDefinesThem) {
+  TempDir dir;
+  const Mesh mesh = loadObj(dir.write("optional.obj", "v 0 0 0 2\nv 1 0 0 1 0 0\nv 0 1 0\nvt 0.25\nvt 1 0 0\nvt 0 1\nf 1/1 2/2 3/3\n"));
+  EXPECT_EQ(std::vector<glm::vec3>(mesh.positions.begin(), mesh.positions.end()),
+            (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}))
+      << "w and colour ignored";
+  const Attribute* uv = mesh.findAttribute("uv");
+  ASSERT_NE(uv, nullptr);
+  EXPECT_EQ(std::vector<float>(uv->values.begin(), uv->values.end()), (std::vector<float>{0.25f, 0, 1, 0, 0, 1}));
 }
 
 // Lines end where tinyobjloader ends them: at "\n", "\r\n" or a lone "\r". The checks number
