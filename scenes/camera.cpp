@@ -1,6 +1,7 @@
 // Camera: matrices and rays from one orthonormal basis, all in double.
 #include "scenes/camera.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -19,6 +20,13 @@ std::string format3(const glm::dvec3& v) {
   return buf;
 }
 
+// The shortest text that reads back as v: std::to_string gave 6 decimals, so a near plane of
+// 2e-7 behind a far one of 1e-7 was reported as "near=0.000000 far=0.000000".
+std::string number(double v) {
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
 }  // namespace
 
 Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
@@ -27,15 +35,14 @@ Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
     throw badInput(at, "eye, target and up must be finite");
   }
   if (!(spec.fovYDegrees > 0.0 && spec.fovYDegrees < 180.0)) {
-    throw badInput(at, "vertical field of view must be in (0, 180) degrees, got " +
-                           std::to_string(spec.fovYDegrees));
+    throw badInput(at, "vertical field of view must be in (0, 180) degrees, got " + number(spec.fovYDegrees));
   }
   if (!(spec.zNear > 0.0) || !std::isfinite(spec.zNear)) {
-    throw badInput(at, "near must be finite and > 0, got " + std::to_string(spec.zNear));
+    throw badInput(at, "near must be finite and > 0, got " + number(spec.zNear));
   }
   if (!(spec.zFar > spec.zNear)) {
-    throw badInput(at, "far must be greater than near (or infinite), got near=" +
-                           std::to_string(spec.zNear) + " far=" + std::to_string(spec.zFar));
+    throw badInput(at, "far must be greater than near (or infinite), got near=" + number(spec.zNear) + " far=" +
+                           number(spec.zFar));
   }
   if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384) {
     throw badInput(at, "image size must be 1..16384 per side, got " + std::to_string(spec.width) +

@@ -74,44 +74,49 @@ TEST(Camera, RowZeroIsTheTopAndViewSpaceLooksDownMinusZ) {
   EXPECT_NEAR(view.z, -5.0, 1e-12);
 }
 
-void expectRefused(CameraSpec spec, const char* what) {
+// `reason`: what the refusal must say after "test: camera: ", values and all.
+void expectRefused(CameraSpec spec, const char* what, const std::string& reason) {
   try {
     Camera camera(spec, "test");
     ADD_FAILURE() << "accepted a camera with " << what;
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kBadInput) << what;
-    EXPECT_NE(std::string(e.what()).find("test: camera"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()), "test: camera: " + reason) << what;
   }
 }
 
 TEST(Camera, DegenerateCamerasAreRefusedWithTheirReason) {
   CameraSpec spec;
   spec.fovYDegrees = 0.0;
-  expectRefused(spec, "a zero field of view");
+  expectRefused(spec, "a zero field of view", "vertical field of view must be in (0, 180) degrees, got 0");
   spec = {};
   spec.fovYDegrees = 180.0;
-  expectRefused(spec, "a 180-degree field of view");
+  expectRefused(spec, "a 180-degree field of view", "vertical field of view must be in (0, 180) degrees, got 180");
   spec = {};
   spec.zNear = 0.0;
-  expectRefused(spec, "near = 0");
+  expectRefused(spec, "near = 0", "near must be finite and > 0, got 0");
   spec = {};
   spec.zFar = spec.zNear;
-  expectRefused(spec, "near = far");
+  expectRefused(spec, "near = far", "far must be greater than near (or infinite), got near=0.1 far=0.1");
+  spec = {};
+  spec.zNear = 2e-7;  // six decimals would print both as 0.000000
+  spec.zFar = 1e-7;
+  expectRefused(spec, "far in front of a tiny near", "far must be greater than near (or infinite), got near=2e-07 far=1e-07");
   spec = {};
   spec.target = spec.eye;
-  expectRefused(spec, "the eye at the target");
+  expectRefused(spec, "the eye at the target", "eye and target are the same point");
   spec = {};
   spec.up = {0.0, 0.0, 0.0};
-  expectRefused(spec, "a zero up vector");
+  expectRefused(spec, "a zero up vector", "up vector is zero");
   spec = {};
   spec.up = {0.0, 0.0, 1.0};
-  expectRefused(spec, "up parallel to the view direction");
+  expectRefused(spec, "up parallel to the view direction", "up vector is parallel to the view direction");
   spec = {};
   spec.eye.x = std::numeric_limits<double>::quiet_NaN();
-  expectRefused(spec, "a NaN eye");
+  expectRefused(spec, "a NaN eye", "eye, target and up must be finite");
   spec = {};
   spec.width = 0;
-  expectRefused(spec, "zero width");
+  expectRefused(spec, "zero width", "image size must be 1..16384 per side, got 0x480");
 }
 
 }  // namespace
