@@ -224,6 +224,14 @@ const std::vector<Field> kFields = {
     {{"skins", "[]", "joints", "[]"}, &kIndex, false, "nodes"},
 };
 
+// A member name as a JSON pointer spells it (RFC 6901): "~" as "~0" and "/" as "~1", so that an
+// attribute "_a/b" is "/attributes/_a~1b", not a member b of a member _a.
+std::string pointerToken(const std::string& name) {
+  std::string token;
+  for (const char c : name) token += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return token;
+}
+
 void checkField(const nlohmann::json& doc, const nlohmann::json& node, const Field& field, std::size_t step,
                 const std::string& pointer, const std::string& path) {
   if (step == field.steps.size()) {
@@ -243,7 +251,9 @@ void checkField(const nlohmann::json& doc, const nlohmann::json& node, const Fie
   const std::string_view key = field.steps[step];
   if (key == "[]" || key == "{}") {  // the shape was checked by the container's own field
     if (key == "[]" ? !node.is_array() : !node.is_object()) return;
-    for (const auto& [name, item] : node.items()) checkField(doc, item, field, step + 1, pointer + "/" + name, path);
+    for (const auto& [name, item] : node.items()) {
+      checkField(doc, item, field, step + 1, pointer + "/" + pointerToken(name), path);
+    }
   } else if (node.is_object() && node.contains(key)) {
     checkField(doc, node[std::string(key)], field, step + 1, pointer + "/" + std::string(key), path);
   } else if (field.required && step + 1 == field.steps.size() && node.is_object()) {

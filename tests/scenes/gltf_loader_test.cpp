@@ -500,6 +500,8 @@ TEST(GltfLoader, AnIndexThatIsNotAWholeNumberFromZeroIsRefusedAtItsPointer) {
       {"/nodes/0/children", nlohmann::json::array({-1}), "/nodes/0/children/0: -1"},
       {"/meshes/0/primitives/0/indices", -2, "/meshes/0/primitives/0/indices: -2"},
       {"/meshes/0/primitives/0/attributes/NORMAL", -5, "/meshes/0/primitives/0/attributes/NORMAL: -5"},
+      // a member name spelled as RFC 6901 spells it: "~" as "~0", "/" as "~1"
+      {"/meshes/0/primitives/0/attributes/_a~1b~0c", -6, "/meshes/0/primitives/0/attributes/_a~1b~0c: -6"},
       {"/meshes/0/primitives/0/targets", nlohmann::json::array({{{"POSITION", 1.0}}}), "/meshes/0/primitives/0/targets/0/POSITION: 1.0"},
       {"/accessors/0/bufferView", -4, "/accessors/0/bufferView: -4"},
       {"/bufferViews/0/buffer", nullptr, "/bufferViews/0/buffer: null"},
