@@ -339,10 +339,10 @@ AccessorReader::AccessorReader(const tinygltf::Model& model, const std::string& 
 
 std::string AccessorReader::where(int index) const { return path_ + ": accessors[" + std::to_string(index) + "]"; }
 
-const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string& from) const {
-  if (index < 0 || std::size_t(index) >= model_.accessors.size()) {
-    throw badInput(from, "names accessor " + std::to_string(index) + ", which the file does not have (it has " +
-                             std::to_string(model_.accessors.size()) + ")");
+const tinygltf::Accessor& AccessorReader::accessor(int index) const {
+  if (index < 0 || std::size_t(index) >= model_.accessors.size()) {  // checkFields refuses these
+    throw internalError(path_ + ": accessor " + std::to_string(index) + " read, but the file has " +
+                        std::to_string(model_.accessors.size()));
   }
   return model_.accessors[std::size_t(index)];
 }
@@ -442,8 +442,8 @@ HugeVector<unsigned char> AccessorReader::elements(int index, int components) co
   return bytes;
 }
 
-HugeVector<float> AccessorReader::floats(int index, Use use, int components, const std::string& from, bool displacement) const {
-  const tinygltf::Accessor& a = accessor(index, from);
+HugeVector<float> AccessorReader::floats(int index, Use use, int components, bool displacement) const {
+  const tinygltf::Accessor& a = accessor(index);
   const int type = a.componentType;
   if (!allowedType(use, displacement, type, a.normalized, quantized_)) {
     std::string why = std::string(a.normalized ? "normalised " : "") + typeName(type) + " components are not allowed for " +
@@ -486,8 +486,8 @@ HugeVector<float> AccessorReader::floats(int index, Use use, int components, con
   return values;
 }
 
-HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount, const std::string& from) const {
-  const tinygltf::Accessor& a = accessor(index, from);
+HugeVector<unsigned> AccessorReader::indices(int index, std::size_t vertexCount) const {
+  const tinygltf::Accessor& a = accessor(index);
   const std::string at = where(index);
   if (a.type != TINYGLTF_TYPE_SCALAR) throw badInput(at, "indices must be SCALAR");
   const int type = a.componentType;

@@ -51,8 +51,8 @@ enum class Use { kPosition, kNormal, kTangent, kTexcoord, kColor, kIndices, kJoi
 // increasing and below the count, as the specification requires). Component types follow the
 // glTF 2.0 tables, widened by KHR_mesh_quantization's when the file lists it in extensionsUsed;
 // normalised integers are converted as the specification says (c / 255, max(c / 127, -1)...).
-// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...), or name the
-// place `from` that names an accessor the file does not have.
+// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...). An index
+// past the file's accessors is an internal error: checkFields has refused every such index.
 class AccessorReader {
  public:
   // The most elements an accessor without a bufferView (zeros, perhaps sparse) may have: such
@@ -62,16 +62,14 @@ class AccessorReader {
   AccessorReader(const tinygltf::Model& model, const std::string& path);
 
   // `components` per element, converted to float; `displacement` for a morph target's values.
-  // `from` is the place that names the accessor ("path: meshes[0].primitives[0].attributes.NORMAL"),
-  // which a refusal of an index past the file's accessors names.
-  HugeVector<float> floats(int index, Use use, int components, const std::string& from, bool displacement = false) const;
+  HugeVector<float> floats(int index, Use use, int components, bool displacement = false) const;
   // Vertex indices, each checked against `vertexCount`.
-  HugeVector<unsigned> indices(int index, std::size_t vertexCount, const std::string& from) const;
+  HugeVector<unsigned> indices(int index, std::size_t vertexCount) const;
   bool quantized() const { return quantized_; }
 
  private:
   std::string where(int index) const;
-  const tinygltf::Accessor& accessor(int index, const std::string& from) const;
+  const tinygltf::Accessor& accessor(int index) const;
   // The elements of accessor `index` (one accessor() has found) packed tightly, sparse
   // replacements applied.
   HugeVector<unsigned char> elements(int index, int components) const;

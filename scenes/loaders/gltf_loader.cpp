@@ -119,7 +119,7 @@ struct Walker {
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
       auto it = primitive.targets[t].find(name);
       if (it == primitive.targets[t].end()) continue;
-      const HugeVector<float> d = reader.floats(it->second, use, components, where + ".targets[" + std::to_string(t) + "]." + name, true);
+      const HugeVector<float> d = reader.floats(it->second, use, components, true);
       if (d.size() / std::size_t(components) != values.size() / std::size_t(stride)) {
         throw badInput(where + ".targets[" + std::to_string(t) + "]", std::string(name) + " count differs from the primitive's");
       }
@@ -140,7 +140,7 @@ struct Walker {
                                 std::to_string(weights.size()) + " weights are given");
     }
     Mesh part;
-    HugeVector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3, where + ".attributes.POSITION");
+    HugeVector<float> p = reader.floats(position->second, gltf::Use::kPosition, 3);
     morph(primitive, weights, "POSITION", gltf::Use::kPosition, 3, p, where);
     for (std::size_t i = 0; i + 2 < p.size(); i += 3) part.positions.push_back({p[i], p[i + 1], p[i + 2]});
     struct Known {
@@ -163,7 +163,7 @@ struct Walker {
                         ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(it->second)].type))
                         : spec.components[0];
       const int components = (n == spec.components[1]) ? n : spec.components[0];
-      HugeVector<float> values = reader.floats(it->second, spec.use, components, where + ".attributes." + spec.gltf);
+      HugeVector<float> values = reader.floats(it->second, spec.use, components);
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, spec.gltf + " count differs from POSITION count");
       }
@@ -184,7 +184,7 @@ struct Walker {
                                  ? tinygltf::GetNumComponentsInType(std::uint32_t(model.accessors[std::size_t(index)].type))
                                  : 1;
       if (components < 1 || components > 4) continue;
-      HugeVector<float> values = reader.floats(index, gltf::Use::kCustom, components, where + ".attributes." + semantic);
+      HugeVector<float> values = reader.floats(index, gltf::Use::kCustom, components);
       if (values.size() != part.positions.size() * std::size_t(components)) {
         throw badInput(where, semantic + " count differs from POSITION count");
       }
@@ -193,7 +193,7 @@ struct Walker {
     }
     HugeVector<unsigned> order;
     if (primitive.indices >= 0) {
-      order = reader.indices(primitive.indices, part.positions.size(), where + ".indices");
+      order = reader.indices(primitive.indices, part.positions.size());
     } else {
       for (unsigned i = 0; i < part.positions.size(); ++i) order.push_back(i);
     }
@@ -235,7 +235,7 @@ struct Walker {
     if (skin.joints.empty()) throw badInput(at, "has no joints");
     HugeVector<float> inverseBind;
     if (skin.inverseBindMatrices >= 0) {
-      inverseBind = reader.floats(skin.inverseBindMatrices, gltf::Use::kMatrix, 16, at + ".inverseBindMatrices");
+      inverseBind = reader.floats(skin.inverseBindMatrices, gltf::Use::kMatrix, 16);
       if (inverseBind.size() < 16 * skin.joints.size()) throw badInput(at, "has fewer inverseBindMatrices than joints");
     }
     std::vector<glm::dmat4> joints;
@@ -256,8 +256,8 @@ struct Walker {
       if (j == primitive.attributes.end() || w == primitive.attributes.end()) {
         throw badInput(where, "has only one of JOINTS_" + std::to_string(set) + " and WEIGHTS_" + std::to_string(set));
       }
-      indices.push_back(reader.floats(j->second, gltf::Use::kJoints, 4, where + ".attributes." + j->first));
-      weights.push_back(reader.floats(w->second, gltf::Use::kWeights, 4, where + ".attributes." + w->first));
+      indices.push_back(reader.floats(j->second, gltf::Use::kJoints, 4));
+      weights.push_back(reader.floats(w->second, gltf::Use::kWeights, 4));
       if (indices.back().size() != 4 * vertices || weights.back().size() != 4 * vertices) {
         throw badInput(where, "JOINTS_" + std::to_string(set) + " or WEIGHTS_" + std::to_string(set) + " count differs from POSITION count");
       }
@@ -364,7 +364,7 @@ struct Walker {
       if (!attributes.Has(kFields[f].name)) continue;
       const tinygltf::Value& index = attributes.Get(kFields[f].name);
       if (!index.IsInt()) throw badInput(at + "/attributes/" + kFields[f].name, "is not an accessor index");
-      values[f] = reader.floats(index.Get<int>(), kFields[f].use, kFields[f].components, at + "/attributes/" + kFields[f].name);
+      values[f] = reader.floats(index.Get<int>(), kFields[f].use, kFields[f].components);
       const std::size_t n = values[f].size() / std::size_t(kFields[f].components);
       if (any && n != count) throw badInput(at, std::string(kFields[f].name) + " has " + std::to_string(n) + " instances, not " + std::to_string(count));
       count = n;
