@@ -37,8 +37,10 @@ void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const st
 // byteOffset of -4 without a word, and refuses a missing count without saying which accessor's.
 // The fields: every index followed (a scene's nodes, a node's mesh, camera, skin and children, a
 // primitive's indices and attributes, an accessor's bufferView...), the containers that hold
-// them, a node's transform and morph weights, and the accessor, buffer view and buffer fields
-// that place the data (counts, offsets, strides, component and element types).
+// them, a node's transform and morph weights, the accessor, buffer view and buffer fields that
+// place the data (counts, offsets, strides, component and element types), and the extensions
+// used and required (tinygltf ignored an extensionsRequired that is a string, so a file that
+// needs Draco loaded).
 void checkFields(const nlohmann::json& doc, const std::string& path);
 
 // What an accessor is read for: it decides the component types allowed.

@@ -557,6 +557,9 @@ TEST(GltfLoader, AFieldMissingOrMalformedIsRefusedAtItsPointer) {
       {"/scene", 3, "/scene: 3 is past the end of /scenes (it holds 1 element)"},
       {"/nodes/0/camera", 0, "/nodes/0/camera: 0 is past the end of /cameras (it holds 0 elements)"},
       {"/accessors/0/bufferView", 1, "/accessors/0/bufferView: 1 is past the end of /bufferViews (it holds 1 element)"},
+      // read as no extension at all: a file that needs Draco loaded, its compressed accessors read as zeros
+      {"/extensionsRequired", "KHR_draco_mesh_compression", "/extensionsRequired: \"KHR_draco_mesh_compression\" is not an array"},
+      {"/extensionsUsed", {"KHR_mesh_quantization", 5}, "/extensionsUsed/1: 5 is not a string"},
   };
   for (const auto& c : cases) {
     nlohmann::json doc = base;
