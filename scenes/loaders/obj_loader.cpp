@@ -46,16 +46,24 @@ void forEachLine(std::string_view text, Fn&& fn) {
   }
 }
 
+// How many v, vt and vn statements come before a line: a negative index counts back from the
+// last of them.
+struct Defined {
+  std::size_t v = 0, vt = 0, vn = 0;
+};
+
 // What is wrong with a face corner, or nullptr. tinyobjloader's parseTriple reads v, v/vt,
 // v//vn or v/vt/vn, each index with atoi, which takes "1.5" as 1, "x" as 0 and "4294967297"
 // as 1: so each index must be an optional sign and digits that fit an int, and not 0 (OBJ
-// counts from 1; negative indices count back from the end).
-const char* faceCornerProblem(std::string_view corner) {
+// counts from 1; negative indices count back from the end). A negative index must not count
+// back past the first of its kind: the parser kept -5 with one vt defined as -4, which then
+// read as "no vt", so the face lost its texture coordinates without a word.
+const char* faceCornerProblem(std::string_view corner, const Defined& defined) {
   constexpr const char* kNotACorner =
       "is not a face corner (v, v/vt, v//vn or v/vt/vn, each a whole number)";
   constexpr const char* kZero = "is a face corner with an index of 0 (indices start at 1; negative ones count back)";
   constexpr const char* kTooLarge = "is a face corner with an index beyond the 32-bit range";
-  const auto index = [&](std::string_view field) -> const char* {
+  const auto index = [&](std::string_view field, std::size_t before, const char* pastFirst) -> const char* {
     if (!field.empty() && field[0] == '+') {
       field.remove_prefix(1);
       if (!field.empty() && field[0] == '-') return kNotACorner;  // atoi reads "+-1" as 0
@@ -65,18 +73,22 @@ const char* faceCornerProblem(std::string_view corner) {
     if (ptr != field.data() + field.size() || ptr == field.data()) return kNotACorner;
     if (ec == std::errc::result_out_of_range) return kTooLarge;
     if (ec != std::errc()) return kNotACorner;
+    if (value < 0 && std::size_t(-static_cast<long long>(value)) > before) return pastFirst;
     return value == 0 ? kZero : nullptr;
   };
+  constexpr const char* kPastV = "is a face corner whose negative v index counts back past the first v above it";
+  constexpr const char* kPastVt = "is a face corner whose negative vt index counts back past the first vt above it";
+  constexpr const char* kPastVn = "is a face corner whose negative vn index counts back past the first vn above it";
   const std::size_t first = corner.find('/');
-  if (first == std::string_view::npos) return index(corner);
-  if (const char* problem = index(corner.substr(0, first))) return problem;
+  if (first == std::string_view::npos) return index(corner, defined.v, kPastV);
+  if (const char* problem = index(corner.substr(0, first), defined.v, kPastV)) return problem;
   const std::string_view rest = corner.substr(first + 1);
   const std::size_t second = rest.find('/');
-  if (second == std::string_view::npos) return index(rest);  // v/vt
+  if (second == std::string_view::npos) return index(rest, defined.vt, kPastVt);  // v/vt
   if (second > 0) {
-    if (const char* problem = index(rest.substr(0, second))) return problem;
+    if (const char* problem = index(rest.substr(0, second), defined.vt, kPastVt)) return problem;
   }
-  return index(rest.substr(second + 1));
+  return index(rest.substr(second + 1), defined.vn, kPastVn);
 }
 
 // What a v, vt or vn statement of `count` numbers should have been, or nullptr if it is one the
@@ -101,6 +113,7 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
   const auto blank = [](char c) { return c == ' ' || c == '\t'; };
   std::vector<std::size_t> faceLines;
   std::size_t triangles = budget.have;
+  Defined defined;
   forEachLine(text, [&](std::size_t line, std::string_view statement) {
     // The keyword, and the tokens after it, split at spaces and tabs as the parser splits them.
     const std::size_t size = statement.size();
@@ -122,7 +135,7 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
       while (end < size && !blank(statement[end])) ++end;
       const std::string_view token = statement.substr(k, end - k);
       if (face) {
-        if (const char* problem = faceCornerProblem(token)) {
+        if (const char* problem = faceCornerProblem(token, defined)) {
           throw badInput(where(), "'" + std::string(token.substr(0, 40)) + "' " + problem);
         }
       } else {
@@ -140,6 +153,7 @@ std::vector<std::size_t> checkStatements(std::string_view text, const std::strin
         throw badInput(where(), std::string(keyword) + " has " + std::to_string(items) + (items == 1 ? " number" : " numbers") +
                                     "; it takes " + takes);
       }
+      ++(keyword == "v" ? defined.v : keyword == "vt" ? defined.vt : defined.vn);
       return;
     }
     const std::size_t corners = items;

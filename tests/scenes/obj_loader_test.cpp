@@ -132,7 +132,7 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
       {"slash.obj", v + "vt 0 0\nf 1/1/ 2/1 3/1\n", "slash.obj:5: '1/1/' is not a face corner"},
       {"slashes.obj", v + "f 1/1/1/1 2 3\n", "slashes.obj:4: '1/1/1/1' is not a face corner"},
       {"range.obj", v + "\n\nf 1 2 9\n", "range.obj:6"},
-      {"behind.obj", v + "f -99 1 2\n", "behind.obj"},
+      {"behind.obj", v + "f -99 1 2\n", "behind.obj:4: '-99' is a face corner whose negative v index counts back past the first v above it"},
       {"two.obj", v + "f 1 2\n", "two.obj:4: face has 2 corners; 3 or more are needed"},
       {"twolater.obj", v + "f 1 2 3\nf 3 1\n", "twolater.obj:5: face has 2 corners"},  // the parser dropped it
       // the parser reads a missing coordinate as 0 and a seventh number not at all
@@ -142,6 +142,12 @@ TEST(ObjLoader, BadFilesAreRefusedNamingFileAndLine) {
       {"vtlong.obj", v + "vt 0 0 0 0\nf 1/1 2/1 3/1\n", "vtlong.obj:4: vt has 4 numbers; it takes 1 to 3 (u [v [w]])"},
       {"vtrange.obj", v + "vt 0 0\nf 1/1 2/2 3/1\n", "vtrange.obj:5: texture coordinate (vt) index out of range (the file has 1)"},
       {"vnrange.obj", v + "vn 0 0 1\nf 1//1 2//1 3//2\n", "vnrange.obj:5: normal (vn) index out of range (the file has 1)"},
+      // the parser kept -5 with one vt above as -4, which read as "no vt": the uv went without a word
+      {"vtback.obj", v + "vt 0 0\nf 1/-5 2/-5 3/-5\n", "vtback.obj:5: '1/-5' is a face corner whose negative vt index counts back past the first vt above it"},
+      {"vnback.obj", v + "vn 0 0 1\nf 1//-1 2//-1 3//-2\n", "vnback.obj:5: '3//-2' is a face corner whose negative vn index counts back past the first vn above it"},
+      {"vback.obj", v + "f -1 -2 -4\n", "vback.obj:4: '-4' is a face corner whose negative v index counts back past the first v above it"},
+      // counted back from the statements above the face, not from the end of the file
+      {"vtlater.obj", v + "vt 0 0\nf 1/-1 2/-2 3/-1\nvt 1 1\n", "vtlater.obj:5: '2/-2' is a face corner whose negative vt index"},
       {"mixed.obj", v + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n", "mixed.obj:6"},
       {"nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:1"},
       {"inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "inf.obj:2"},
