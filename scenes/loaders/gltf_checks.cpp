@@ -239,16 +239,15 @@ std::string pointerToken(const std::string& name) {
 void checkField(const nlohmann::json& doc, const nlohmann::json& node, const Field& field, std::size_t step,
                 const std::string& pointer, const std::string& path) {
   if (step == field.steps.size()) {
-    if (field.rule->holds(node) && field.names) {
-      const std::size_t size = doc.contains(field.names) ? doc[field.names].size() : 0;
-      if (node.get<std::uint64_t>() >= size) {
-        throw badInput(path + ": " + pointer, node.dump() + " is past the end of /" + field.names + " (it holds " +
-                                                   std::to_string(size) + (size == 1 ? " element)" : " elements)"));
-      }
-    } else if (!field.rule->holds(node)) {
+    if (!field.rule->holds(node)) {
       std::string value = node.is_object() ? "an object" : node.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       if (value.size() > 40) value = node.is_array() ? "an array of " + std::to_string(node.size()) + " elements" : value.substr(0, 40) + "...";
       throw badInput(path + ": " + pointer, value + " is not " + field.rule->what);
+    }
+    const std::size_t size = field.names && doc.contains(field.names) ? doc[field.names].size() : 0;
+    if (field.names && node.get<std::uint64_t>() >= size) {
+      throw badInput(path + ": " + pointer, node.dump() + " is past the end of /" + field.names + " (it holds " +
+                                                 std::to_string(size) + (size == 1 ? " element)" : " elements)"));
     }
     return;
   }
@@ -270,6 +269,13 @@ void checkField(const nlohmann::json& doc, const nlohmann::json& node, const Fie
 void checkFields(const nlohmann::json& doc, const std::string& path) {
   if (!doc.is_object()) throw badInput(path, "the JSON is not an object, as a glTF file's must be");
   for (const Field& field : kFields) checkField(doc, doc, field, 0, "", path);
+}
+
+void requireChecked(int index, std::size_t size, const std::string& where) {
+  if (index < 0 || std::size_t(index) >= size) {
+    throw internalError(where + ": index " + std::to_string(index) + " read past the end (" + std::to_string(size) +
+                        "), which checkFields refuses");
+  }
 }
 
 namespace {
@@ -344,10 +350,7 @@ AccessorReader::AccessorReader(const tinygltf::Model& model, const std::string& 
 std::string AccessorReader::where(int index) const { return path_ + ": accessors[" + std::to_string(index) + "]"; }
 
 const tinygltf::Accessor& AccessorReader::accessor(int index) const {
-  if (index < 0 || std::size_t(index) >= model_.accessors.size()) {  // checkFields refuses these
-    throw internalError(path_ + ": accessor " + std::to_string(index) + " read, but the file has " +
-                        std::to_string(model_.accessors.size()));
-  }
+  requireChecked(index, model_.accessors.size(), path_ + ": accessors");
   return model_.accessors[std::size_t(index)];
 }
 

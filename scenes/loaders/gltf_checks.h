@@ -43,6 +43,10 @@ void checkUris(const nlohmann::json& doc, const EmbeddedData& embedded, const st
 // needs Draco loaded).
 void checkFields(const nlohmann::json& doc, const std::string& path);
 
+// Guards a read at an index checkFields has already held below its array's size: past the end
+// here would be a gap in those checks, so it is an internal error, not the file's.
+void requireChecked(int index, std::size_t size, const std::string& where);
+
 // What an accessor is read for: it decides the component types allowed.
 // kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
 // float or normalised signed integers (EXT_mesh_gpu_instancing's ROTATION).
@@ -53,8 +57,8 @@ enum class Use { kPosition, kNormal, kTangent, kTexcoord, kColor, kIndices, kJoi
 // increasing and below the count, as the specification requires). Component types follow the
 // glTF 2.0 tables, widened by KHR_mesh_quantization's when the file lists it in extensionsUsed;
 // normalised integers are converted as the specification says (c / 255, max(c / 127, -1)...).
-// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...). An index
-// past the file's accessors is an internal error: checkFields has refused every such index.
+// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...); an index
+// past the file's accessors is requireChecked's internal error.
 class AccessorReader {
  public:
   // The most elements an accessor without a bufferView (zeros, perhaps sparse) may have: such

@@ -229,10 +229,9 @@ struct Walker {
   // the weighted sum of its joints' world transform times inverse bind matrix, as glTF specifies;
   // the mesh node's own transform does not apply. Positions, normals and tangents end in world space.
   void applySkin(int skinIndex, const tinygltf::Primitive& primitive, Mesh& part, const std::string& where) {
-    if (std::size_t(skinIndex) >= model.skins.size()) throw badInput(where, "skin index " + std::to_string(skinIndex) + " out of range");
+    gltf::requireChecked(skinIndex, model.skins.size(), where + ": skin");
     const tinygltf::Skin& skin = model.skins[std::size_t(skinIndex)];
     const std::string at = path + ": skins[" + std::to_string(skinIndex) + "]";
-    if (skin.joints.empty()) throw badInput(at, "has no joints");
     HugeVector<float> inverseBind;
     if (skin.inverseBindMatrices >= 0) {
       inverseBind = reader.floats(skin.inverseBindMatrices, gltf::Use::kMatrix, 16);
@@ -241,7 +240,7 @@ struct Walker {
     std::vector<glm::dmat4> joints;
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
       const int node = skin.joints[j];
-      if (node < 0 || std::size_t(node) >= model.nodes.size()) throw badInput(at, "joint " + std::to_string(j) + " names no node");
+      gltf::requireChecked(node, model.nodes.size(), at + ": joint");
       glm::dmat4 bind(1.0);
       for (std::size_t k = 0; k < 16 && !inverseBind.empty(); ++k) bind[int(k / 4)][int(k % 4)] = inverseBind[16 * j + k];
       joints.push_back(worldOf(node) * bind);
@@ -394,7 +393,7 @@ struct Walker {
   }
 
   void readCamera(int index, const glm::dmat4& world, const std::string& where) {
-    if (index < 0 || std::size_t(index) >= model.cameras.size()) throw badInput(where, "camera index out of range");
+    gltf::requireChecked(index, model.cameras.size(), where + ": camera");
     if (cameraPlaced.empty()) cameraPlaced.assign(model.cameras.size(), 0);
     if (cameraPlaced[std::size_t(index)]) return;  // placed again by a later node: the first placement counts
     cameraPlaced[std::size_t(index)] = 1;
@@ -437,7 +436,7 @@ struct Walker {
 
   void visit(int index, const glm::dmat4& parent, int depth) {
     const std::string where = path + ": nodes[" + std::to_string(index) + "]";
-    if (index < 0 || std::size_t(index) >= model.nodes.size()) throw badInput(where, "no such node");
+    gltf::requireChecked(index, model.nodes.size(), where);
     if (depth > kMaxNodeDepth) throw badInput(where, "node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
     if (!onPath.insert(index).second) throw badInput(where, "the node hierarchy has a cycle");
     const tinygltf::Node& node = model.nodes[index];
@@ -519,7 +518,7 @@ GltfContent loadGltf(const std::string& path, TriangleBudget budget) {
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (std::size_t(scene) >= model.scenes.size()) throw badInput(path + ": /scene", "no such scene");
+    gltf::requireChecked(scene, model.scenes.size(), path + ": /scene");
     roots = model.scenes[scene].nodes;
   } else {  // no scenes: every node that is nobody's child
     std::vector<bool> child(model.nodes.size(), false);
