@@ -148,6 +148,12 @@ void checkHeaderSizes(const std::string& path) {
   }
 }
 
+// "(x0,y0)-(x1,y1)".
+std::string boxText(const Imath::Box2i& box) {
+  return "(" + std::to_string(box.min.x) + "," + std::to_string(box.min.y) + ")-(" + std::to_string(box.max.x) + "," +
+         std::to_string(box.max.y) + ")";
+}
+
 }  // namespace
 
 void setExrThreads(int threads) {
@@ -225,13 +231,22 @@ Framebuffer readExr(const std::string& path) {
       throw badInput(path + ": dataWindow", "declares " + std::to_string(raw) + " bytes of pixels in a file of " +
                                                 std::to_string(fileSize) + " bytes: truncated or corrupt");
     }
+    // Pixel (x, y) of a frame is the camera's pixel (x, y) only where the data window is the
+    // whole display window and starts at (0, 0): a shifted or cropped data window would
+    // otherwise be compared as if it were aligned with the other image.
+    const Imath::Box2i display = file.header().displayWindow();
+    if (window != display) {
+      throw badInput(path + ": dataWindow", boxText(window) + " is not the displayWindow " + boxText(display) +
+                                                "; compare reads whole frames (docs/compare.md)");
+    }
+    if (display.min != Imath::V2i(0, 0)) {
+      throw badInput(path + ": displayWindow", boxText(display) +
+                                                   " does not start at (0,0); compare reads frames whose pixel (0,0) "
+                                                   "is the camera's (docs/compare.md)");
+    }
     Framebuffer fb(static_cast<int>(width), static_cast<int>(height));
     Imf::FrameBuffer slices;
     const std::size_t xStride = 4, yStride = 4 * std::size_t(width);
-    // Slices are addressed in data-window coordinates, so the base is shifted by its origin.
-    const std::ptrdiff_t originOffset =
-        -(std::ptrdiff_t(window.min.x) * std::ptrdiff_t(xStride) +
-          std::ptrdiff_t(window.min.y) * std::ptrdiff_t(yStride));
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
       const std::string name = it.name();
       const Imf::Channel& ch = it.channel();
@@ -247,7 +262,7 @@ Framebuffer readExr(const std::string& path) {
         throw badInput(path + ": channel " + name,
                        "is HALF; rastercheck compares FLOAT data (HALF cannot hold ground truth)");
       }
-      slices.insert(name, Imf::Slice(ch.type, base + originOffset, xStride, yStride));
+      slices.insert(name, Imf::Slice(ch.type, base, xStride, yStride));
     }
     for (auto it = file.header().begin(); it != file.header().end(); ++it) {
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {

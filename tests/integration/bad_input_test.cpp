@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "core/exr_io.h"
+#include "core/framebuffer.h"
 #include "tests/run_command.h"
 #include "tests/test_files.h"
 
@@ -226,6 +228,27 @@ void writeHalfExr(const std::string& path, int sampling = 1) {
   file.writePixels(4);
 }
 
+// FROM's channels written again under the windows given (OpenEXR's absolute pixel
+// coordinates): the data window holds FROM's pixels from its top-left corner on.
+void writeWindowedExr(const std::string& from, const std::string& to, const Imath::Box2i& display,
+                      const Imath::Box2i& data) {
+  const rc::Framebuffer fb = rc::readExr(from);
+  Imf::Header header(display, data);
+  Imf::FrameBuffer slices;
+  const std::ptrdiff_t xStride = 4, yStride = 4 * std::ptrdiff_t(fb.width());
+  const std::ptrdiff_t origin = data.min.x * xStride + data.min.y * yStride;
+  for (const rc::Channel& c : fb.channels()) {
+    const bool uint = c.type == rc::ChannelType::kUint;
+    const Imf::PixelType type = uint ? Imf::UINT : Imf::FLOAT;
+    const char* plane = uint ? reinterpret_cast<const char*>(c.uints.data()) : reinterpret_cast<const char*>(c.floats.data());
+    header.channels().insert(c.name, Imf::Channel(type));
+    slices.insert(c.name, Imf::Slice(type, const_cast<char*>(plane) - origin, xStride, yStride));
+  }
+  Imf::OutputFile file(to.c_str(), header);
+  file.setFrameBuffer(slices);
+  file.writePixels(data.max.y - data.min.y + 1);
+}
+
 TEST(BadInput, ExrFilesGivenToCompare) {
   TempDir dir;
   const std::string good = dir.file("good.exr"), other = dir.file("other.exr");
@@ -281,6 +304,12 @@ TEST(BadInput, ExrFilesGivenToCompare) {
   writeHalfExr(dir.file("subsampled.exr"), 2);
   ASSERT_EQ(rastercheck("render sphere --size 32x24 -o " + dir.file("sphere.exr")).exitCode, 0);
   ASSERT_EQ(rastercheck("render cube --size 24x32 -o " + dir.file("portrait.exr")).exitCode, 0);
+  // Another renderer's frame, cropped or shifted: read as if aligned, each passed against the
+  // reference it is not aligned with.
+  const Imath::Box2i frame({0, 0}, {31, 23});
+  writeWindowedExr(good, dir.file("shifted.exr"), frame, Imath::Box2i({5, 0}, {36, 23}));
+  writeWindowedExr(good, dir.file("cropped.exr"), frame, Imath::Box2i({0, 0}, {15, 23}));
+  writeWindowedExr(good, dir.file("overscan.exr"), Imath::Box2i({-4, -2}, {27, 21}), Imath::Box2i({-4, -2}, {27, 21}));
 
   const struct { std::string file; int code; std::string fragment; } cases[] = {
       {dir.write("zero.exr", ""), 3, "zero.exr"},
@@ -300,6 +329,13 @@ TEST(BadInput, ExrFilesGivenToCompare) {
       {dir.file("subsampled.exr"), 3, "subsampled.exr: channel bary.b0: subsampled channels are not supported"},
       {dir.file("sphere.exr"), 3, "attr.normal"},
       {dir.file("portrait.exr"), 3, "differs"},
+      {dir.file("shifted.exr"), 3,
+       "shifted.exr: dataWindow: (5,0)-(36,23) is not the displayWindow (0,0)-(31,23); compare reads whole frames"},
+      {dir.file("cropped.exr"), 3,
+       "cropped.exr: dataWindow: (0,0)-(15,23) is not the displayWindow (0,0)-(31,23); compare reads whole frames"},
+      {dir.file("overscan.exr"), 3,
+       "overscan.exr: displayWindow: (-4,-2)-(27,21) does not start at (0,0); compare reads frames whose pixel (0,0) is "
+       "the camera's"},
       {dir.file("absent.exr"), 4, "absent.exr"},
       {dir.write("text.exr", "P6\n1 1\n255\n   "), 3, "text.exr"},
   };
