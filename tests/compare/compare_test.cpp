@@ -788,7 +788,9 @@ TEST(CompareHeatmap, ExplanationsMarkOnlyDisagreementsAndTheColoursShowTheChosen
     EXPECT_EQ(explanation[6], std::uint32_t(Explanation::kEdgeBand)) << key;
     EXPECT_EQ(explanation[7], std::uint32_t(Explanation::kUnexplained)) << key;
     for (std::size_t i = 0; i < explanation.size(); ++i) {
-      if (i != 6 && i != 7) EXPECT_EQ(explanation[i], kNothingToExplain) << key << ", pixel " << i;
+      if (i != 6 && i != 7) {
+        EXPECT_EQ(explanation[i], kNothingToExplain) << key << ", pixel " << i;
+      }
     }
     EXPECT_EQ(heatmap.attributes.at("rastercheck.heatmapQuantity"), key);
     EXPECT_EQ(heatmap.find("error.bary")->floats[shown], float(0x1p-22));
