@@ -158,7 +158,7 @@ void addSceneOptions(CLI::App* command, RenderSettings& s) {
   command->add_option("--eye", s.eye, "camera position x,y,z, overriding the scene's");
   command->add_option("--target", s.target, "point the camera looks at, x,y,z");
   command->add_option("--up", s.up, "camera up direction x,y,z, overriding the scene's (needed where the view is along it)");
-  command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(1e-3, 179.999));
+  command->add_option("--fov", s.fovYDegrees, "vertical field of view in degrees")->check(CLI::Range(kMinFovYDegrees, kMaxFovYDegrees));
   command->add_option("--camera", s.camera,
                       "glTF files: the camera to render through, by its index in the file's cameras or its name "
                       "(default: the first the scene places)")

@@ -1,17 +1,28 @@
 // Camera: matrices and rays from one orthonormal basis, all in double.
 #include "scenes/camera.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
+#include "scenes/mesh.h"
 
 namespace rc {
 namespace {
 
 bool finite3(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+double largestMagnitude(const glm::dvec3& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+
+// The length of a finite v, without the overflow or underflow of its squares: (0, 1e-300, 0)
+// has length 1e-300, not 0, and (1e200, 0, 0) 1e200, not infinity.
+double length(const glm::dvec3& v) {
+  const double scale = largestMagnitude(v);
+  return scale == 0.0 ? 0.0 : scale * glm::length(v / scale);
 }
 
 std::string format3(const glm::dvec3& v) {
@@ -27,6 +38,8 @@ std::string number(double v) {
   return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
 }
 
+std::string number3(const glm::dvec3& v) { return "(" + number(v.x) + "," + number(v.y) + "," + number(v.z) + ")"; }
+
 }  // namespace
 
 Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
@@ -34,8 +47,12 @@ Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
   if (!finite3(spec.eye) || !finite3(spec.target) || !finite3(spec.up)) {
     throw badInput(at, "eye, target and up must be finite");
   }
-  if (!(spec.fovYDegrees > 0.0 && spec.fovYDegrees < 180.0)) {
-    throw badInput(at, "vertical field of view must be in (0, 180) degrees, got " + number(spec.fovYDegrees));
+  if (largestMagnitude(spec.eye) > kMaxCoordinate || largestMagnitude(spec.target) > kMaxCoordinate) {
+    throw badInput(at, "eye and target must lie within 1e18 of the origin on each axis, as mesh positions do, got eye=" +
+                           number3(spec.eye) + " target=" + number3(spec.target));
+  }
+  if (!(spec.fovYDegrees >= kMinFovYDegrees && spec.fovYDegrees <= kMaxFovYDegrees)) {
+    throw badInput(at, "vertical field of view must be 0.001 to 179.999 degrees, got " + number(spec.fovYDegrees));
   }
   if (!(spec.zNear > 0.0) || !std::isfinite(spec.zNear)) {
     throw badInput(at, "near must be finite and > 0, got " + number(spec.zNear));
@@ -49,12 +66,12 @@ Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
                            "x" + std::to_string(spec.height));
   }
   const glm::dvec3 view = spec.target - spec.eye;
-  const double distance = glm::length(view);
-  if (!(distance > 0.0) || !std::isfinite(distance)) {
+  const double distance = length(view);
+  if (!(distance > 0.0)) {
     throw badInput(at, "eye and target are the same point");
   }
   forward_ = view / distance;
-  const double upLength = glm::length(spec.up);
+  const double upLength = length(spec.up);
   if (!(upLength > 0.0)) throw badInput(at, "up vector is zero");
   const glm::dvec3 side = glm::cross(forward_, spec.up / upLength);
   // sin(angle between up and the view direction) below 1e-9: no meaningful roll.

@@ -12,11 +12,18 @@
 
 namespace rc {
 
+// The vertical fields of view a camera may have, in degrees, whichever way it is given (--fov, a
+// scene file, a glTF camera). Much narrower, the two paths part: at 1e-17 degrees the rays
+// through neighbouring pixels are the same doubles, and at 1e-25 the gate blamed the
+// rasterizer for every pixel of a frame.
+inline constexpr double kMinFovYDegrees = 0.001;
+inline constexpr double kMaxFovYDegrees = 179.999;
+
 struct CameraSpec {
   glm::dvec3 eye{0.0, 0.0, 5.0};     // world position of the centre of projection
   glm::dvec3 target{0.0, 0.0, 0.0};  // a world point the camera looks at
   glm::dvec3 up{0.0, 1.0, 0.0};      // world direction that appears upwards on screen
-  double fovYDegrees = 45.0;         // vertical field of view, in (0, 180)
+  double fovYDegrees = 45.0;         // vertical field of view, kMinFovYDegrees..kMaxFovYDegrees
   double zNear = 0.1;                // nearest depth drawn, > 0
   double zFar = std::numeric_limits<double>::infinity();  // farthest depth drawn, or +inf
   int width = 640;                   // image size in pixels

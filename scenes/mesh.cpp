@@ -11,13 +11,6 @@
 #include "core/error.h"
 
 namespace rc {
-namespace {
-
-// Embree silently skips triangles with coordinates above about 1.8e18; both paths must see
-// the same geometry, so such meshes are refused here.
-constexpr float kMaxCoordinate = 1e18f;
-
-}  // namespace
 
 bool validAttributeName(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;

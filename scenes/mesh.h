@@ -77,6 +77,11 @@ void appendMesh(Mesh& into, const Mesh& part, const glm::dmat4& worldFromPart);
 // the mesh has.
 void selectAttributes(Mesh& mesh, const std::vector<std::string>& names, const std::string& where);
 
+// The largest magnitude a mesh position (and a camera's eye or target) may have on any axis.
+// Embree silently skips triangles with coordinates above about 1.8e18; both paths must see
+// the same geometry, so such meshes are refused.
+inline constexpr double kMaxCoordinate = 1e18;
+
 // Throws badInput(where + ...) naming the first problem: a non-finite or out-of-range
 // position, an index out of range, an attribute of the wrong size or with a bad name.
 void validateMesh(const Mesh& mesh, const std::string& where);

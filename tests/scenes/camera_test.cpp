@@ -88,10 +88,24 @@ void expectRefused(CameraSpec spec, const char* what, const std::string& reason)
 TEST(Camera, DegenerateCamerasAreRefusedWithTheirReason) {
   CameraSpec spec;
   spec.fovYDegrees = 0.0;
-  expectRefused(spec, "a zero field of view", "vertical field of view must be in (0, 180) degrees, got 0");
-  spec = {};
+  expectRefused(spec, "a zero field of view", "vertical field of view must be 0.001 to 179.999 degrees, got 0");
+  spec.fovYDegrees = 1e-25;  // the gate blamed the rasterizer for every pixel
+  expectRefused(spec, "a field of view the paths cannot resolve",
+                "vertical field of view must be 0.001 to 179.999 degrees, got 1e-25");
   spec.fovYDegrees = 180.0;
-  expectRefused(spec, "a 180-degree field of view", "vertical field of view must be in (0, 180) degrees, got 180");
+  expectRefused(spec, "a 180-degree field of view", "vertical field of view must be 0.001 to 179.999 degrees, got 180");
+  spec.fovYDegrees = 179.9991;
+  expectRefused(spec, "a field of view just past the widest", "vertical field of view must be 0.001 to 179.999 degrees, got 179.9991");
+  spec = {};
+  spec.eye = {0.0, 0.0, 1e200};  // its distance to the target overflowed: "the same point"
+  expectRefused(spec, "an eye far beyond any mesh",
+                "eye and target must lie within 1e18 of the origin on each axis, as mesh positions do, got eye=(0,0,1e+200) "
+                "target=(0,0,0)");
+  spec = {};
+  spec.target = {-2e18, 0.0, 0.0};
+  expectRefused(spec, "a target far beyond any mesh",
+                "eye and target must lie within 1e18 of the origin on each axis, as mesh positions do, got eye=(0,0,5) "
+                "target=(-2e+18,0,0)");
   spec = {};
   spec.zNear = 0.0;
   expectRefused(spec, "near = 0", "near must be finite and > 0, got 0");
@@ -117,6 +131,37 @@ TEST(Camera, DegenerateCamerasAreRefusedWithTheirReason) {
   spec = {};
   spec.width = 0;
   expectRefused(spec, "zero width", "image size must be 1..16384 per side, got 0x480");
+}
+
+// The bounds of each range make cameras, and so do vectors whose squared length underflows or
+// overflows a double: each of those was refused as zero, parallel or the same point.
+TEST(Camera, EveryValueWithinTheRangesMakesACamera) {
+  const auto accepted = [](const CameraSpec& spec, glm::dvec3 forward, const char* what) {
+    try {
+      const Camera camera(spec, "test");
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(camera.forward()[i], forward[i], 1e-15) << what;
+    } catch (const Error& e) {
+      ADD_FAILURE() << what << ": " << e.what();
+    }
+  };
+  const glm::dvec3 ahead(0.0, 0.0, -1.0);  // the default spec's view direction
+  CameraSpec spec;
+  spec.fovYDegrees = kMinFovYDegrees;
+  accepted(spec, ahead, "the narrowest field of view");
+  spec.fovYDegrees = kMaxFovYDegrees;
+  accepted(spec, ahead, "the widest field of view");
+  spec = {};
+  spec.up = {0.0, 1e-300, 0.0};  // was "up vector is zero"
+  accepted(spec, ahead, "a tiny up vector");
+  spec.up = {1e-320, 1e200, 0.0};  // was "up vector is parallel to the view direction"
+  accepted(spec, ahead, "a huge up vector");
+  spec = {};
+  spec.eye = {0.0, 0.0, 1e-300};  // was "eye and target are the same point"
+  accepted(spec, ahead, "an eye next to the target");
+  spec = {};
+  spec.eye = {1e18, -1e18, 1e18};
+  spec.target = -spec.eye;
+  accepted(spec, glm::dvec3(-1.0, 1.0, -1.0) / std::sqrt(3.0), "eye and target at the largest coordinates");
 }
 
 }  // namespace
