@@ -444,7 +444,7 @@ struct Walker {
     if (!finiteMatrix(world)) throw badInput(where, "transform is not finite");
     if (node.camera >= 0) readCamera(node.camera, world, where);
     if (node.mesh >= 0) {
-      if (std::size_t(node.mesh) >= model.meshes.size()) throw badInput(where, "mesh index out of range");
+      gltf::requireChecked(node.mesh, model.meshes.size(), where + ": mesh");
       const bool skinned = node.skin >= 0;  // then the joints place it, not the node
       const double det = glm::determinant(glm::dmat3(world));
       if (!skinned && !(std::fabs(det) > 0.0)) throw badInput(where, "transform is not invertible");
