@@ -524,6 +524,15 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
                                  std::to_string(test.height()) + " differs from " + refPath + " (" +
                                  std::to_string(ref.width()) + "x" + std::to_string(ref.height()) + ")");
   }
+  // Both renderers record their camera (docs/channels.md); two renders through different
+  // cameras have no pixel in common, and comparing them would blame each error on a bound.
+  const auto testCamera = test.attributes.find(channels::header::kCamera);
+  const auto refCamera = ref.attributes.find(channels::header::kCamera);
+  if (testCamera != test.attributes.end() && refCamera != ref.attributes.end() && testCamera->second != refCamera->second) {
+    throw badInput(testPath + ": " + channels::header::kCamera,
+                   "'" + testCamera->second + "' is not " + refPath + "'s '" + refCamera->second +
+                       "': the images were rendered through different cameras");
+  }
   const auto& testIds = require(test, testPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   const auto& refIds = require(ref, refPath, channels::kTriangleId, ChannelType::kUint, "").uints;
   CompareReport report;

@@ -189,6 +189,17 @@ TEST(Compare, IncompatibleImagesAreRefusedNamingFileAndChannel) {
   floatIds.addFloat(channels::kTriangleId);
   EXPECT_EQ(incompatibility(floatIds, image(), &message), int(ExitCode::kBadInput));
   EXPECT_NE(message.find("test.exr: channel tri.id"), std::string::npos) << message;
+
+  // Renders through two cameras (both record theirs): refused, not failed bound by bound. An
+  // image without the line (another renderer's) is taken at its word.
+  Framebuffer here = image(), there = image();
+  here.attributes[channels::header::kCamera] = "eye=(0,0,5) size=8x6";
+  there.attributes[channels::header::kCamera] = "eye=(0,0,6) size=8x6";
+  EXPECT_EQ(incompatibility(here, there, &message), int(ExitCode::kBadInput));
+  EXPECT_EQ(message, "test.exr: rastercheck.camera: 'eye=(0,0,5) size=8x6' is not ref.exr's 'eye=(0,0,6) size=8x6': "
+                     "the images were rendered through different cameras");
+  EXPECT_EQ(incompatibility(here, here, &message), 0);
+  EXPECT_EQ(incompatibility(here, image(), &message), 0);
 }
 
 // --attributes: only the attribute families named are compared, each required in both; an

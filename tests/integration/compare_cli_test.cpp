@@ -92,13 +92,21 @@ TEST(Cli, MismatchedSizesAndMissingChannelsAreExitThree) {
   const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string(), c = (dir / "c.exr").string();
   ASSERT_EQ(run("render cube -o " + a + " --size 64x48").exitCode, 0);
   ASSERT_EQ(run("render cube -o " + b + " --size 64x64").exitCode, 0);
-  ASSERT_EQ(run("render sphere -o " + c + " --size 64x48").exitCode, 0);  // has attr.normal
+  // Through the cube's camera, so that only its channels differ: it has attr.normal.
+  ASSERT_EQ(run("render sphere -o " + c + " --size 64x48 --eye 2.6,2.2,3.4").exitCode, 0);
+  const std::string d = (dir / "d.exr").string();
+  ASSERT_EQ(run("render cube -o " + d + " --size 64x48 --eye 2.6,2.2,3.5 --backend reference").exitCode, 0);
   const CliRun sizes = run("compare " + a + " " + b);
   EXPECT_EQ(sizes.exitCode, 3) << sizes.output;
   EXPECT_NE(sizes.output.find("differs"), std::string::npos) << sizes.output;
   const CliRun channels = run("compare " + a + " " + c);
   EXPECT_EQ(channels.exitCode, 3) << channels.output;
   EXPECT_NE(channels.output.find("attr.normal"), std::string::npos) << channels.output;
+  // The camera moved by 0.1: every pixel differs, which is the camera's doing, not a bound's.
+  const CliRun cameras = run("compare " + a + " " + d + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(cameras.exitCode, 3) << cameras.output;
+  EXPECT_NE(cameras.output.find("the images were rendered through different cameras"), std::string::npos) << cameras.output;
+  EXPECT_FALSE(fs::exists(dir / "r.json"));
 }
 
 // compare --junit: one test case, named by the test image, with the reference as a property.
