@@ -13,6 +13,7 @@
 
 #include "compare/compare.h"
 #include "compare/report.h"
+#include "core/channels.h"
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/exr_io.h"
@@ -310,6 +311,15 @@ BenchRow measuredRow(const Scene& scene, const RenderSettings& settings, LiveSet
   return row;
 }
 
+// A frame in which the reference covers no pixel gives no error to set a setting's speed
+// against: every error would read 0, as if each setting were exact.
+void refuseEmptyReference(const Scene& scene, const Framebuffer& reference) {
+  const Channel* ids = reference.find(channels::kTriangleId);
+  if (ids && std::any_of(ids->uints.begin(), ids->uints.end(), [](std::uint32_t id) { return id != channels::kNoTriangle; })) return;
+  throw badInput(scene.name, "the reference covers no pixel of the frame, so no setting's error can be measured; aim "
+                             "the camera at the mesh (--eye, --target)");
+}
+
 }  // namespace
 
 // Steady-state frames: each renderer keeps its framebuffer (and the rasterizer its working
@@ -336,6 +346,7 @@ std::vector<BenchRow> runBench(const std::vector<Scene>& scenes, const RenderSet
     const std::size_t firstRow = rows.size();
     step(scene.name + ": reference builds");
     std::vector<BuiltReference> references = buildReferences(scene, settings.reference, alsoLowBuild, runs);
+    refuseEmptyReference(scene, references[0].frame);
     std::vector<LiveSetting> live(sweep.size());
     Framebuffer withDiagnostics, withoutDiagnostics;
     for (std::size_t i = 0; i < sweep.size(); ++i) {

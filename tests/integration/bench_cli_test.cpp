@@ -446,6 +446,22 @@ TEST(Cli, BenchChartIsWrittenInTheFormatItsNameAsks) {
   EXPECT_NE(r.output.find("affine-double-8bit"), std::string::npos) << r.output;
 }
 
+// A camera that misses the mesh leaves bench no error to set speed against: every setting's
+// errors read 0, as if each were exact, and the chart put them all on one point. Refused,
+// naming the scene, before anything is written.
+TEST(Cli, BenchRefusesAFrameTheReferenceLeavesEmpty) {
+  const rc::testing::TempDir temp;
+  const fs::path& dir = temp.path();
+  const CliRun r = run("bench cube floor --eye 0,0,-1000 --target 0,0,-2000 --runs 1 -q --json " + (dir / "b.json").string() +
+                       " --chart " + (dir / "b.svg").string());
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find("rastercheck: error: cube: the reference covers no pixel of the frame, so no setting's error "
+                          "can be measured; aim the camera at the mesh (--eye, --target)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::is_empty(dir)) << "output left behind";
+}
+
 // bench times the settings in rounds, every setting once per round, and says so as it goes:
 // progress counts the reference, each round and the errors, and reaches its total.
 // --settings times those alone; a name bench has no setting of is a usage error before anything
