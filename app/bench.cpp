@@ -308,6 +308,7 @@ BenchRow measuredRow(const Scene& scene, const RenderSettings& settings, LiveSet
   row.baryMax = report.families[0].stats.max;
   row.baryP999 = report.families[0].stats.p999;
   row.disagreementFraction = report.disagreementFraction;
+  row.coverageFraction = report.coverageFraction;
   return row;
 }
 

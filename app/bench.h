@@ -86,6 +86,9 @@ struct BenchRow {
   std::string speedupWithBuildQuality;
   double trianglesPerSecond = 0, pixelsPerSecond = 0;
   double baryMax = 0, baryP999 = 0, disagreementFraction = 0;
+  // Pixels one path covers and the other does not, over those either covers (compare's
+  // coverage_fraction); -1 in files from before session 49, which lack it.
+  double coverageFraction = 0;
   // How busy other work kept the machine while this row's scene was measured (its builds,
   // rounds, errors and EXR writes; every row of a scene has the same); none where /proc/stat
   // cannot be read, and in files from before session 44.

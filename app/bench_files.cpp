@@ -28,7 +28,8 @@ std::string benchJson(const std::vector<BenchRow>& rows, const BenchMachine& mac
                           {"speedup_with_build_quality", r.speedupWithBuildQuality},
                           {"triangles_per_second", r.trianglesPerSecond}, {"pixels_per_second", r.pixelsPerSecond},
                           {"bary_max_error", r.baryMax}, {"bary_p999_error", r.baryP999},
-                          {"disagreement_fraction", r.disagreementFraction}};
+                          {"disagreement_fraction", r.disagreementFraction},
+                          {"coverage_fraction", r.coverageFraction}};
     if (r.exrWriteMs >= 0) row["exr_write_ms"] = r.exrWriteMs;
     if (r.load) row["load"] = {{"other_processes", r.load->others}, {"steal", r.load->steal}};
     if (r.overDefault > 0) {
@@ -122,6 +123,7 @@ BenchRow readRow(const nlohmann::json& j, const std::string& at) {
     r.baryMax = j.at("bary_max_error").get<double>();
     r.baryP999 = j.at("bary_p999_error").get<double>();
     r.disagreementFraction = j.at("disagreement_fraction").get<double>();
+    r.coverageFraction = j.value("coverage_fraction", -1.0);
     if (j.contains("load")) r.load = readLoad(j["load"], at + "/load");
     // The chart places these on log axes (an error of 0 on a row of its own).
     const auto finite = [&](const char* field, double value, bool positive) {
@@ -131,6 +133,7 @@ BenchRow readRow(const nlohmann::json& j, const std::string& at) {
     finite("raster_ms", r.rasterMs, true);
     finite("bary_p999_error", r.baryP999, false);
     finite("disagreement_fraction", r.disagreementFraction, false);
+    if (j.contains("coverage_fraction")) finite("coverage_fraction", r.coverageFraction, false);
     return r;
   });
 }
@@ -184,7 +187,7 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
          "reference_isa,raster_isa,store_floor_ms,diagnostics,cull,speedup_min,speedup_max,reference_build,"
          "reference_low_build_ms,reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
          "speedup_with_build_quality,load_other_processes,load_steal,raster_over_default,raster_over_default_min,"
-         "raster_over_default_max\n";
+         "raster_over_default_max,coverage_fraction\n";
   char line[768];  // every field after the scene: numbers and short names
   for (const BenchRow& r : rows) {
     char exr[32] = "";  // empty: not measured for this setting
@@ -209,7 +212,7 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
     }
     std::snprintf(line, sizeof line,
                   ",%zu,%d,%d,%d,%s,%s,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n",
+                  "%.4g,%.4g,%s,%s,%s,%.4g,%s,%s,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4g\n",
                   r.triangles, r.width, r.height, r.threads, r.setting.c_str(),
                   r.isDefault ? "true" : "false", r.runs, r.rasterMs, r.rasterMsMin, r.rasterMsMax, r.transformMs,
                   r.setupMs, r.binMs, r.tilesMs, r.referenceBuildMs, r.referenceTraceMs, r.speedup,
@@ -217,7 +220,7 @@ std::string benchCsv(const std::vector<BenchRow>& rows) {
                   r.disagreementFraction, exr, r.referenceIsa.c_str(), r.rasterIsa.c_str(), r.storeFloorMs,
                   r.diagnostics ? "true" : "false", r.cull.c_str(), r.speedupMin, r.speedupMax, r.referenceBuild.c_str(),
                   builds[0][0], builds[0][1], builds[1][0], builds[1][1], r.speedupWithBuildQuality.c_str(), load[0],
-                  load[1], overDefault[0], overDefault[1], overDefault[2]);
+                  load[1], overDefault[0], overDefault[1], overDefault[2], r.coverageFraction);
     out << csvQuoted(r.scene) << line;
   }
   return out.str();

@@ -35,9 +35,9 @@ struct BenchArgs {
 void printBenchTable(const std::vector<BenchRow>& rows) {
   int nameWidth = 20;  // wider for a long path, so that the columns stay aligned
   for (const BenchRow& r : rows) nameWidth = std::max(nameWidth, int(r.scene.size()));
-  std::printf("%-*s %-31s %9s %15s %21s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %8s\n", nameWidth, "scene", "setting",
-              "raster ms", "(min..max)", "x default (per round)", "Mtri/s", "Mpix/s", "floor ms", "ref build", "ref trace", "speedup",
-              "(per round)", "w/build", "bary max", "bary p999", "disagree", "exr ms");
+  std::printf("%-*s %-31s %9s %15s %21s %8s %8s %8s %9s %9s %8s %13s %8s %9s %9s %9s %9s %8s\n", nameWidth, "scene",
+              "setting", "raster ms", "(min..max)", "x default (per round)", "Mtri/s", "Mpix/s", "floor ms", "ref build",
+              "ref trace", "speedup", "(per round)", "w/build", "bary max", "bary p999", "disagree", "one side", "exr ms");
   for (const BenchRow& r : rows) {
     char spread[32], exr[16] = "-";
     // One decimal, as the median has two; under a millisecond three, as the median has.
@@ -52,11 +52,12 @@ void printBenchTable(const std::vector<BenchRow>& rows) {
     }
     char median[32];
     std::snprintf(median, sizeof median, r.rasterMs < 1 ? "%.3f" : "%.2f", r.rasterMs);
-    std::printf("%-*s %-31s %9s %15s %21s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %8s\n", nameWidth,
+    std::printf("%-*s %-31s %9s %15s %21s %8s %8.0f %8.2f %9.2f %9.2f %8.2f %13s %8.2f %9s %9s %9s %9s %8s\n", nameWidth,
                 r.scene.c_str(), (r.setting + (r.isDefault ? " *" : "")).c_str(), median, spread, overDefault,
                 formatNumber(r.trianglesPerSecond * 1e-6).c_str(), r.pixelsPerSecond * 1e-6, r.storeFloorMs, r.referenceBuildMs,
                 r.referenceTraceMs, r.speedup, rounds, r.speedupWithBuild, formatNumber(r.baryMax).c_str(),
-                formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(), exr);
+                formatNumber(r.baryP999).c_str(), formatNumber(r.disagreementFraction).c_str(),
+                formatNumber(r.coverageFraction).c_str(), exr);
   }
   std::printf("* default setting; x default = raster / the default's raster (medians), and per round the least and\n"
               "  greatest of each round's frame / the default's frame (--json: raster_over_default);\n"
@@ -66,6 +67,8 @@ void printBenchTable(const std::vector<BenchRow>& rows) {
               "  trace / frame, timed within a second of each other; w/build = (build + trace) / raster, with the\n"
               "  build quality whose sum is the smaller (--json: speedup_with_build_quality);\n"
               "  floor ms = writing the setting's output planes alone, as its kernels write them (memory's floor);\n"
+              "  disagree = pixels where the triangle differs, one side = pixels one path covers alone, each over\n"
+              "  the pixels either covers;\n"
               "  exr ms = writing the default setting's output (ZIP EXR, as render -o does; median of up to 3);\n"
               "  --json adds stage times\n");
 }

@@ -162,7 +162,7 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
        << "<tr><th>scene</th><th>setting</th><th>threads</th><th>raster ms</th><th>x default</th><th>floor ms</th>"
        << "<th>reference trace ms</th>"
        << "<th>speedup</th><th>per round</th><th>bary max</th><th>bary p99.9</th><th>disagreement</th>"
-       << "<th>other work</th></tr>\n";
+       << "<th>one side only</th><th>other work</th></tr>\n";
   for (const BenchRow& r : rows) {
     html << "<tr><td>" << escapeMarkup(r.scene) << "</td><td>" << escapeMarkup(r.setting) << (r.isDefault ? " (default)" : "")
          << "</td><td>" << r.threads << "</td><td>" << formatNumber(r.rasterMs) << "</td><td>" << overDefault(r) << "</td><td>"
@@ -170,7 +170,9 @@ void benchSection(std::ostringstream& html, const std::string& dir, const BenchR
          << formatNumber(r.referenceTraceMs) << "</td><td>" << formatNumber(r.speedup) << "</td><td>"
          << (r.speedupMax > 0 ? formatNumber(r.speedupMin) + " to " + formatNumber(r.speedupMax) : std::string("-"))
          << "</td><td>" << formatNumber(r.baryMax) << "</td><td>" << formatNumber(r.baryP999) << "</td><td>"
-         << formatNumber(r.disagreementFraction) << "</td><td>" << otherWork(r) << "</td></tr>\n";
+         << formatNumber(r.disagreementFraction) << "</td><td>"
+         << (r.coverageFraction >= 0 ? formatNumber(r.coverageFraction) : std::string("-")) << "</td><td>" << otherWork(r)
+         << "</td></tr>\n";
   }
   html << "</table>\n</section>\n";
 }

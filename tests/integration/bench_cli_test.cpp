@@ -191,10 +191,10 @@ TEST(Cli, BenchReportsEverySettingWithItsSpeedAndError) {
       EXPECT_TRUE(line.ends_with(",cull,speedup_min,speedup_max,reference_build,reference_low_build_ms,"
                                  "reference_low_trace_ms,reference_medium_build_ms,reference_medium_trace_ms,"
                                  "speedup_with_build_quality,load_other_processes,load_steal,raster_over_default,"
-                                 "raster_over_default_min,raster_over_default_max")) << line;
+                                 "raster_over_default_min,raster_over_default_max,coverage_fraction")) << line;
     }
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 42) << "43 columns in every line: " << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 43) << "44 columns in every line: " << line;
   }
   EXPECT_EQ(lines, int(rows.size()) + 1);  // header + one line per setting
   std::ifstream svgFile(dir / "b.svg");
@@ -372,16 +372,16 @@ TEST(Cli, BenchErrorColumnsAreComparesFiguresForTheSameFrames) {
     const std::size_t at = bench.output.find(mark);
     ASSERT_NE(at, std::string::npos) << setting << "\n" << bench.output;
     const std::vector<std::string> cells = cellsOfLine(bench.output, at);
-    ASSERT_GE(cells.size(), 4u) << bench.output;
-    const std::vector<std::string> table(cells.end() - 4, cells.end() - 1);
-    EXPECT_EQ(table, (std::vector<std::string>{printed(row["bary_max_error"]),
-                                               printed(row["bary_p999_error"]),
-                                               printed(row["disagreement_fraction"])}))
+    ASSERT_GE(cells.size(), 5u) << bench.output;
+    const std::vector<std::string> table(cells.end() - 5, cells.end() - 1);
+    EXPECT_EQ(table, (std::vector<std::string>{printed(row["bary_max_error"]), printed(row["bary_p999_error"]),
+                                               printed(row["disagreement_fraction"]), printed(row["coverage_fraction"])}))
         << setting << "\n" << bench.output;
     const std::vector<std::string>& cellsCsv = csvRows[i + 1];
     ASSERT_EQ(cellsCsv.size(), csvRows[0].size()) << setting;
     EXPECT_EQ(cellsCsv[column("setting")], setting);
-    for (const char* name : {"bary_max_error", "bary_p999_error", "disagreement_fraction", "raster_ms", "speedup"}) {
+    for (const char* name :
+         {"bary_max_error", "bary_p999_error", "disagreement_fraction", "coverage_fraction", "raster_ms", "speedup"}) {
       EXPECT_EQ(cellsCsv[column(name)], printed(row[name], "%.4g")) << setting << ": " << name;
     }
   }
@@ -406,13 +406,15 @@ TEST(Cli, BenchErrorColumnsAreComparesFiguresForTheSameFrames) {
     EXPECT_EQ(row["bary_max_error"], c["families"]["bary"]["max"]) << setting;
     EXPECT_EQ(row["bary_p999_error"], c["families"]["bary"]["p999"]) << setting;
     EXPECT_EQ(row["disagreement_fraction"], c["disagreement_fraction"]) << setting;
+    EXPECT_EQ(row["coverage_fraction"], c["coverage_fraction"]) << setting;
     // Figures that tell the columns apart: affine's error spreads below its maximum, and 4 bits
-    // of snapping move some edges over pixel centres.
+    // of snapping move some edges over pixel centres, silhouettes' too.
     if (setting == "affine-float-8bit") {
       EXPECT_LT(row["bary_p999_error"].get<double>(), row["bary_max_error"].get<double>());
     }
     if (setting == "perspective-float-4bit") {
       EXPECT_GT(row["disagreement_fraction"].get<double>(), 0.0);
+      EXPECT_GT(row["coverage_fraction"].get<double>(), 0.0);
     }
     ++compared;
   }
@@ -545,7 +547,7 @@ TEST(Cli, BenchCsvQuotesAnySceneName) {
     }
   }
   EXPECT_FALSE(quoted) << line;
-  ASSERT_EQ(fields.size(), 43u) << line;
+  ASSERT_EQ(fields.size(), 44u) << line;
   EXPECT_EQ(fields[0], obj.string());
   EXPECT_EQ(fields[1], "1");  // triangles
 }

@@ -205,12 +205,15 @@ rc::app::BenchRow madeUpDefaultBenchRow() {
 }
 
 // Each bench row's frame over its scene's default's: the medians' ratio and each round's least
-// and greatest, in that order; "-" in the default's own row.
+// and greatest, in that order; "-" in the default's own row. Its disagreement and one-side
+// fractions follow ("-" for the second in a file from before session 49, which lacks it).
 TEST(HtmlReport, ShowsEachBenchRowsFrameOverTheDefaults) {
   rc::testing::TempDir dir;
   rc::app::BenchRow def = madeUpDefaultBenchRow();
   def.overDefault = def.overDefaultMin = def.overDefaultMax = 1;
+  def.disagreementFraction = 0.25, def.coverageFraction = 0.125;
   rc::app::BenchRow oneThread = def;
+  oneThread.coverageFraction = -1;
   oneThread.setting = "perspective-float-8bit-1thread";
   oneThread.isDefault = false;
   oneThread.threads = 1;
@@ -225,6 +228,8 @@ TEST(HtmlReport, ShowsEachBenchRowsFrameOverTheDefaults) {
   EXPECT_NE(html.find("<td>perspective-float-8bit-1thread</td><td>1</td><td>0.875</td><td>1.75 (1.5 to 2.25)</td>"),
             std::string::npos)
       << html;
+  EXPECT_NE(html.find("<td>0.25</td><td>0.125</td><td>-</td></tr>"), std::string::npos) << html;  // other work: unmeasured
+  EXPECT_NE(html.find("<td>0.25</td><td>-</td><td>-</td></tr>"), std::string::npos) << html;
 }
 
 // Bench results taken on a busy machine say so in the report, in words that stand out; an idle
@@ -247,7 +252,7 @@ TEST(HtmlReport, SaysWhenTheBenchFiguresCameFromABusyMachine) {
                                      : "</p>")),
               std::string::npos)
         << html;
-    EXPECT_NE(html.find("<th>disagreement</th><th>other work</th></tr>"), std::string::npos);
+    EXPECT_NE(html.find("<th>disagreement</th><th>one side only</th><th>other work</th></tr>"), std::string::npos);
     EXPECT_NE(html.find(busy ? "</td><td><strong>35.0%</strong></td></tr>" : "</td><td>0.3%</td></tr>"), std::string::npos)
         << html;
   }
