@@ -536,7 +536,8 @@ TEST(BenchChart, PngIsTheSameLayoutDrawn) {
 // (JSON has no infinity: nlohmann refuses 1e999 as it parses, and bench writes one as null.)
 TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
   const rc::testing::TempDir temp;
-  const std::vector<BenchRow> rows = craftedRows();
+  std::vector<BenchRow> rows = craftedRows();
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i].coverageFraction = 0.0625 * double(i);
   const rc::app::BenchMachine machine{"test cpu", 2, "avx2", "avx2", "GCC 12", "3.13.5", "0.1"};
   const std::string good = temp.write("good.json", rc::app::benchJson(rows, machine));
   const rc::app::BenchResults back = rc::app::readBenchJson(good);
@@ -546,8 +547,17 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
     EXPECT_EQ(back.rows[i].rasterMs, rows[i].rasterMs);
     EXPECT_EQ(back.rows[i].baryP999, rows[i].baryP999);
     EXPECT_EQ(back.rows[i].disagreementFraction, rows[i].disagreementFraction);
+    EXPECT_EQ(back.rows[i].coverageFraction, rows[i].coverageFraction);
     EXPECT_EQ(back.rows[i].overDefault, 0.0) << "none written";
   }
+  // A file from before session 49 has no coverage_fraction: read as -1, which the report shows as "-".
+  std::string older = rc::app::benchJson(rows, machine);
+  for (std::size_t at; (at = older.find("\"coverage_fraction\": ")) != std::string::npos;) {
+    older.erase(at, older.find_first_of(",\n}", at) + 1 - at);
+  }
+  const rc::app::BenchResults olderBack = rc::app::readBenchJson(temp.write("older.json", older));
+  ASSERT_EQ(olderBack.rows.size(), rows.size()) << older;
+  for (const BenchRow& r : olderBack.rows) EXPECT_EQ(r.coverageFraction, -1.0) << r.setting;
   // Each row's frame over the default's comes back where it was measured.
   std::vector<BenchRow> counted = rows;
   counted[1].overDefault = 1.75;
@@ -565,7 +575,7 @@ TEST(BenchJson, ReadsWhatBenchWroteAndRefusesFiguresNoChartCanPlace) {
     const char* field;
     const char* value;  // JSON text
   };
-  for (const Case c : {Case{"disagreement_fraction", "-0.001"}, Case{"bary_p999_error", "-1e-7"},
+  for (const Case c : {Case{"disagreement_fraction", "-0.001"}, Case{"coverage_fraction", "-0.001"}, Case{"bary_p999_error", "-1e-7"},
                        Case{"raster_ms", "0"}, Case{"raster_ms", "-3"}}) {
     std::string text = rc::app::benchJson(rows, machine);
     // Row 1's field, whatever the writer's spacing: replace the value after its second mention.
