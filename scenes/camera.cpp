@@ -2,11 +2,11 @@
 #include "scenes/camera.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "scenes/mesh.h"
 
 namespace rc {
@@ -31,14 +31,7 @@ std::string format3(const glm::dvec3& v) {
   return buf;
 }
 
-// The shortest text that reads back as v: std::to_string gave 6 decimals, so a near plane of
-// 2e-7 behind a far one of 1e-7 was reported as "near=0.000000 far=0.000000".
-std::string number(double v) {
-  char buf[32];
-  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-}
-
-std::string number3(const glm::dvec3& v) { return "(" + number(v.x) + "," + number(v.y) + "," + number(v.z) + ")"; }
+std::string number3(const glm::dvec3& v) { return "(" + exactNumber(v.x) + "," + exactNumber(v.y) + "," + exactNumber(v.z) + ")"; }
 
 }  // namespace
 
@@ -52,14 +45,14 @@ Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
                            number3(spec.eye) + " target=" + number3(spec.target));
   }
   if (!(spec.fovYDegrees >= kMinFovYDegrees && spec.fovYDegrees <= kMaxFovYDegrees)) {
-    throw badInput(at, "vertical field of view must be 0.001 to 179.999 degrees, got " + number(spec.fovYDegrees));
+    throw badInput(at, "vertical field of view must be 0.001 to 179.999 degrees, got " + exactNumber(spec.fovYDegrees));
   }
   if (!(spec.zNear > 0.0) || !std::isfinite(spec.zNear)) {
-    throw badInput(at, "near must be finite and > 0, got " + number(spec.zNear));
+    throw badInput(at, "near must be finite and > 0, got " + exactNumber(spec.zNear));
   }
   if (!(spec.zFar > spec.zNear)) {
-    throw badInput(at, "far must be greater than near (or infinite), got near=" + number(spec.zNear) + " far=" +
-                           number(spec.zFar));
+    throw badInput(at, "far must be greater than near (or infinite), got near=" + exactNumber(spec.zNear) + " far=" +
+                           exactNumber(spec.zFar));
   }
   if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384) {
     throw badInput(at, "image size must be 1..16384 per side, got " + std::to_string(spec.width) +

@@ -58,6 +58,11 @@ TEST(Registry, BadNamesAndParametersAreUsageErrors) {
   // The range is given as a user would write it, not as "[8.000000, 4000000.000000]".
   rc::testing::expectError([] { makeBuiltinScene("blob:tris=3"); }, ExitCode::kUsage,
                            {"scene blob:tris=3: tris=3 is outside [8, 4000000]"}, "blob:tris=3");
+  // A limit of 2^40 in full: %.10g printed it as 1.099511628e+12, which the refused seed is below.
+  rc::testing::expectError([] { makeBuiltinScene("closed:seed=1099511627777"); }, ExitCode::kUsage,
+                           {"scene closed:seed=1099511627777: seed=1099511627777 is outside [0, 1099511627776]"},
+                           "closed:seed=2^40+1");
+  EXPECT_EQ(makeBuiltinScene("closed:seed=1099511627776").name, "closed:seed=1099511627776");
 }
 
 Mesh oneTriangle() {
