@@ -14,6 +14,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/number_text.h"
 #include "core/parallel.h"
 #include "core/preview.h"
 #include "raytracer_ref/embree_device.h"
@@ -208,12 +209,11 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
   fb.attributes[channels::header::kPrecision] = "double";
   fb.attributes["rastercheck.embreeIsa"] = options.isa;
   fb.attributes["rastercheck.embreeBuild"] = embreeBuildName(options.build);
-  char band[32];
-  std::snprintf(band, sizeof band, "%.6g", referenceEdgeBand(camera));
-  fb.attributes[channels::header::kEdgeBand] = band;
+  // Both exact, as the rasterizer's band is: compare reads them back as bounds, and six digits
+  // rounded half of them down.
+  fb.attributes[channels::header::kEdgeBand] = exactNumber(referenceEdgeBand(camera));
   // Embree orders hits by its float t, within the same angular error (8 (1 + k) u, relative).
-  std::snprintf(band, sizeof band, "%.6g", 8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24);
-  fb.attributes[channels::header::kDepthResolution] = band;
+  fb.attributes[channels::header::kDepthResolution] = exactNumber(8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24);
   fb.attributes["rastercheck.embreeTriangles"] = std::to_string(source.empty() ? scene.mesh.triangleCount() : source.size());
   char diff[32];
   std::snprintf(diff, sizeof diff, "%.3g", *std::max_element(embreeDiff.begin(), embreeDiff.end()));

@@ -89,6 +89,21 @@ TEST(Reference, NothingNearerThanTheNearPlaneIsHit) {
   EXPECT_GT(covered, 300);
 }
 
+// compare reads the reference's edge band and depth resolution back from its header as bounds:
+// each must read back as the very double docs/numerics.md's formula gives (written with six
+// digits, half of them read back smaller than they are).
+TEST(Reference, HeaderBoundsReadBackExactly) {
+  for (const char* name : {"cube", "sphere", "floor", "grazing"}) {
+    const Scene scene = makeBuiltinScene(name);
+    const Framebuffer fb = renderReference(scene, singleThread());
+    const double tanY = scene.camera.tanHalfFovY(), tanX = tanY * scene.camera.aspect();
+    const double resolution = 8.0 * (1.0 + kMaxLengthOverDistance) * 0x1p-24;
+    const double band = resolution * (scene.camera.height() / (2.0 * tanY)) * (1.0 + tanX * tanX + tanY * tanY);
+    EXPECT_EQ(std::stod(fb.attributes.at(channels::header::kEdgeBand)), band) << name;
+    EXPECT_EQ(std::stod(fb.attributes.at(channels::header::kDepthResolution)), resolution) << name;
+  }
+}
+
 TEST(Reference, OutputBitsAreIdenticalForOneAndTwoThreads) {
   const Scene scene = makeBuiltinScene("sphere");
   const Framebuffer one = renderReference(scene, singleThread());
