@@ -14,8 +14,8 @@ namespace rc {
 
 // The vertical fields of view a camera may have, in degrees, whichever way it is given (--fov, a
 // scene file, a glTF camera). Much narrower, the two paths part: at 1e-17 degrees the rays
-// through neighbouring pixels are the same doubles, and at 1e-25 the gate blamed the
-// rasterizer for every pixel of a frame.
+// through neighbouring pixels are the same doubles, and at 1e-25 the gate failed the
+// rasterizer for three quarters of a frame's pixels, each covered by one path alone.
 inline constexpr double kMinFovYDegrees = 0.001;
 inline constexpr double kMaxFovYDegrees = 179.999;
 

@@ -89,7 +89,7 @@ TEST(Camera, DegenerateCamerasAreRefusedWithTheirReason) {
   CameraSpec spec;
   spec.fovYDegrees = 0.0;
   expectRefused(spec, "a zero field of view", "vertical field of view must be 0.001 to 179.999 degrees, got 0");
-  spec.fovYDegrees = 1e-25;  // the gate blamed the rasterizer for every pixel
+  spec.fovYDegrees = 1e-25;  // the gate failed the rasterizer for most of the frame
   expectRefused(spec, "a field of view the paths cannot resolve",
                 "vertical field of view must be 0.001 to 179.999 degrees, got 1e-25");
   spec.fovYDegrees = 180.0;
