@@ -45,7 +45,8 @@ Camera::Camera(const CameraSpec& spec, const std::string& where) : spec_(spec) {
                            number3(spec.eye) + " target=" + number3(spec.target));
   }
   if (!(spec.fovYDegrees >= kMinFovYDegrees && spec.fovYDegrees <= kMaxFovYDegrees)) {
-    throw badInput(at, "vertical field of view must be 0.001 to 179.999 degrees, got " + exactNumber(spec.fovYDegrees));
+    throw badInput(at, "vertical field of view must be " + exactNumber(kMinFovYDegrees) + " to " + exactNumber(kMaxFovYDegrees) +
+                           " degrees, got " + exactNumber(spec.fovYDegrees));
   }
   if (!(spec.zNear > 0.0) || !std::isfinite(spec.zNear)) {
     throw badInput(at, "near must be finite and > 0, got " + exactNumber(spec.zNear));

@@ -11,17 +11,6 @@
 #include "scenes/hard/hard_scenes.h"
 
 namespace rc {
-namespace {
-
-// A parameter's limit as written in the scene list: a whole number in full (4000000, not
-// 4e+06; 1099511627776, not %.10g's 1.099511628e+12, which a seed one above the limit is
-// below), any other exactly.
-std::string limitText(double v) {
-  if (v == std::floor(v) && std::fabs(v) < 0x1p53) return std::to_string(static_cast<long long>(v));
-  return exactNumber(v);
-}
-
-}  // namespace
 
 SceneArgs::SceneArgs(std::string scene, std::map<std::string, std::string> values)
     : scene_(std::move(scene)), values_(std::move(values)) {}
@@ -50,8 +39,8 @@ double SceneArgs::getDouble(const std::string& key, double fallback, double min,
     throw usageError("scene " + scene_ + ": " + key + "=" + text + " is not a number");
   }
   if (!(value >= min && value <= max)) {
-    throw usageError("scene " + scene_ + ": " + key + "=" + text + " is outside [" + limitText(min) + ", " +
-                     limitText(max) + "]");
+    throw usageError("scene " + scene_ + ": " + key + "=" + text + " is outside [" + exactNumber(min) + ", " +
+                     exactNumber(max) + "]");
   }
   return value;
 }
