@@ -64,6 +64,12 @@ BaselineFigures baselineFigures(const nlohmann::json& report, const std::string&
   BaselineFigures b;
   b.width = side(report, "width", where);
   b.height = side(report, "height", where);
+  // Reports from before the camera was recorded lack it, as do those of images without the line.
+  if (report.contains("camera") && !report["camera"].is_null()) {
+    const nlohmann::json& camera = report["camera"];
+    if (!camera.is_string()) throw badInput(where + "/camera", "is " + camera.dump() + ", not a string or null");
+    b.camera = camera.get<std::string>();
+  }
   b.disagreement = figure(field(report, "disagreement_fraction", where), where + "/disagreement_fraction");
   b.coverage = figure(field(report, "coverage_fraction", where), where + "/coverage_fraction");
   const std::string familiesAt = where + "/families";
@@ -120,6 +126,12 @@ std::vector<std::string> baselineWarnings(const CompareReport& now, const Baseli
     warnings.push_back("the baseline's images are " + std::to_string(before.width) + "x" +
                        std::to_string(before.height) + ", these " + std::to_string(now.width) + "x" +
                        std::to_string(now.height) + ": not held to it");
+    return warnings;
+  }
+  // Figures measured through another camera are of other pixels (compare refuses such a pair).
+  if (!now.camera.empty() && !before.camera.empty() && now.camera != before.camera) {
+    warnings.push_back("the baseline's images were rendered through the camera '" + before.camera + "', these through '" +
+                       now.camera + "': not held to it");
     return warnings;
   }
   for (const FamilyReport& f : now.families) {

@@ -26,6 +26,7 @@ struct BaselineFigures {
     std::optional<double> boundRatio;
   };
   int width = 0, height = 0;
+  std::string camera;  // its rastercheck.camera line; empty when it recorded none
   std::optional<std::size_t> triangles;  // the scene's, from a check report
   std::map<std::string, Family> families;  // by family name: "bary", "depth", "attr.uv"
   double disagreement = 0.0, coverage = 0.0;
@@ -49,8 +50,8 @@ Baseline readBaseline(const std::string& path, bool perScene);
 // error 5.1e-05, 2.11x the baseline's 2.42e-05"). A baseline figure below a floor is held as the
 // floor: an error of 2^-24 (half a float ulp of 1), a fraction of one covered pixel; so a figure
 // the baseline had at 0 warns from `factor` times the floor up ("where the baseline's was 0"). A
-// family the baseline lacks is said once, and so is a baseline of another image size, whose
-// figures are then not held to.
+// family the baseline lacks is said once, and so is a baseline of another image size or rendered
+// through another camera, whose figures are then not held to.
 std::vector<std::string> baselineWarnings(const CompareReport& now, const BaselineFigures& before, double factor);
 
 // Adds baselineWarnings(report, before, use.factor) to the report's warnings and records `use`.

@@ -541,6 +541,11 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
   report.referencePath = refPath;
   report.width = test.width();
   report.height = test.height();
+  if (refCamera != ref.attributes.end()) {
+    report.camera = refCamera->second;
+  } else if (testCamera != test.attributes.end()) {
+    report.camera = testCamera->second;
+  }
   report.thresholds = thresholds;
   const std::size_t n = test.pixelCount();
   const PlaneVector<PixelClass> classes = classifyPixels(testIds, refIds, report);

@@ -117,6 +117,9 @@ struct BaselineUse {
 struct CompareReport {
   std::string testPath, referencePath;
   int width = 0, height = 0;
+  // The camera the images were rendered through, as their rastercheck.camera headers record it
+  // (the reference's, or the test's when only it records one); empty when neither does.
+  std::string camera;
   std::size_t classCounts[kPixelClassCount] = {};
   std::size_t coveredEither = 0;
   double disagreementFraction = 0.0;

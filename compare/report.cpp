@@ -71,6 +71,7 @@ nlohmann::json reportToJson(const CompareReport& r) {
   j["reference"] = r.referencePath;
   j["width"] = r.width;
   j["height"] = r.height;
+  j["camera"] = r.camera.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.camera);
   nlohmann::json pixels;
   for (int c = 0; c < kPixelClassCount; ++c) pixels[pixelClassName(PixelClass(c))] = r.classCounts[c];
   pixels["covered_either"] = r.coveredEither;

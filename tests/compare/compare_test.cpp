@@ -420,6 +420,20 @@ TEST(Baseline, FiguresThatGrewBeyondTheFactorAreWarnings) {
   odd.width = 12;
   EXPECT_EQ(baselineWarnings(r, odd, 2.0),
             (std::vector<std::string>{"the baseline's images are 12x10, these 10x10: not held to it"}));
+  // Nor is a baseline whose images were rendered through another camera: its figures are of
+  // other pixels. A report of images that record no camera is held to any baseline.
+  Framebuffer seen = now, seenRef = image();
+  seen.attributes[channels::header::kCamera] = seenRef.attributes[channels::header::kCamera] = "eye=(0,0,5)";
+  const CompareReport throughCamera = compareImages(seen, "t.exr", seenRef, "r.exr", t, nullptr);
+  EXPECT_EQ(throughCamera.camera, "eye=(0,0,5)");
+  BaselineFigures elsewhere = b;
+  elsewhere.camera = "eye=(0,0,6)";
+  EXPECT_EQ(baselineWarnings(throughCamera, elsewhere, 2.0),
+            (std::vector<std::string>{"the baseline's images were rendered through the camera 'eye=(0,0,6)', these "
+                                      "through 'eye=(0,0,5)': not held to it"}));
+  EXPECT_EQ(baselineWarnings(r, elsewhere, 2.0), baselineWarnings(r, b, 2.0));
+  elsewhere.camera = "eye=(0,0,5)";
+  EXPECT_EQ(baselineWarnings(throughCamera, elsewhere, 2.0), baselineWarnings(r, b, 2.0));
 
   // Held to it, the report carries the warnings after its own and names the baseline.
   Thresholds warnAlso = t;
@@ -469,6 +483,14 @@ TEST(Baseline, AnythingButAReportOfTheCommandIsRefusedNamingTheField) {
   j = report;
   j.erase("coverage_fraction");
   refused(j, false, "/coverage_fraction: missing");
+  j = report;
+  j["camera"] = "eye=(1,2,3)";  // read back as written; null or absent: none
+  EXPECT_EQ(readBaseline(dir.write("camera.json", j.dump()), false).at("").at(0).camera, "eye=(1,2,3)");
+  EXPECT_EQ(readBaseline(compareFile, false).at("").at(0).camera, "");
+  j.erase("camera");
+  EXPECT_EQ(readBaseline(dir.write("camera.json", j.dump()), false).at("").at(0).camera, "");
+  j["camera"] = 3;
+  refused(j, false, "/camera: is 3, not a string or null");
   j = report;
   j["width"] = 0.5;
   refused(j, false, "/width: is 0.5; an image side is a whole number of pixels");

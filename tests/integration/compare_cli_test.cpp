@@ -409,6 +409,13 @@ TEST(Cli, BaselineWarnsOfFiguresThatGrew) {
             std::string::npos)
       << grown.output;
   EXPECT_EQ(rc::testing::occurrences(grown.output, "warning: "), 1) << grown.output;
+  // Nor is a scene seen through another camera than the baseline's.
+  const CliRun moved = run("check cube -q --baseline-factor 1 --eye 2.6,2.2,3.5 --baseline " + base);
+  EXPECT_EQ(moved.exitCode, 0) << moved.output;
+  EXPECT_NE(moved.output.find("    warning: the baseline's images were rendered through the camera 'eye=(2.6"),
+            std::string::npos)
+      << moved.output;
+  EXPECT_EQ(rc::testing::occurrences(moved.output, "warning: "), 1) << moved.output;
   // A factor above the growth keeps it quiet.
   const CliRun loose = run("check cube sphere -q --subpixel-bits 4 --baseline " + base + " --baseline-factor 100");
   EXPECT_EQ(loose.output.find("warning"), std::string::npos) << loose.output;
