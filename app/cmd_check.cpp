@@ -174,6 +174,93 @@ nlohmann::json checkJsonRow(const Scene& scene, const CheckResult& r, const Rend
           {"report", reportToJson(r.report)}};
 }
 
+// What check gathers scene by scene, for its summary line and the files written at the end.
+struct CheckTally {
+  nlohmann::json rows = nlohmann::json::array();  // check --json's scenes
+  std::vector<ReportScene> reportScenes;
+  std::vector<JUnitCase> junitCases;
+  std::set<std::string> stems;                    // the file names taken so far
+  std::map<std::string, std::size_t> occurrences;  // of each scene name so far, to pair with the baseline's
+  bool allPass = true;
+  std::size_t warned = 0;  // scenes with a warning
+};
+
+// Every scene loaded before any is rendered, so that a bad name or file fails before any work.
+std::vector<Scene> loadCheckScenes(const CheckArgs& args, Progress& progress) {
+  std::vector<Scene> scenes;
+  for (const std::string& spec : args.scenes) {
+    progress.step("loading " + spec);
+    scenes.push_back(loadScene(spec, args.settings));
+    requireAttributeLimitsApply(scenes.back(), spec, args.thresholds, args.settings);
+  }
+  return scenes;
+}
+
+// One scene: both paths, the comparison and the baseline; its line of the table, its EXRs and
+// pictures (--out, --report) and its entries in the tally.
+void checkOneScene(const Scene& scene, const CheckArgs& args, const Baseline& baseline, int nameWidth,
+                   Progress& progress, WrittenOutputs& outputs, CheckTally& tally) {
+  progress.step(scene.name + ": rasterizer, reference, compare");
+  const long long started = nowNanoseconds();
+  const bool wantPictures = !args.out.empty() || !args.report.empty();
+  CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
+  const std::size_t occurrence = tally.occurrences[scene.name]++;
+  if (!args.baseline.file.empty()) {
+    holdSceneToBaseline(r.report, scene.name, occurrence, r.triangles, baseline, args.baseline);
+  }
+  const double seconds = millisecondsSince(started) * 1e-3;
+  printSceneLine(scene, r, nameWidth, args.verbose);
+  tally.warned += !r.report.warnings.empty();
+  const std::string stem = fileStem(scene.name, tally.stems);
+  const ScenePictures pictures = wantPictures ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
+                                                             heatmapImage(r.heatmap)}
+                                             : ScenePictures{};
+  if (!args.out.empty()) {
+    progress.step(scene.name + ": writing EXR and PNG files");
+    writeExrs(args.out, stem, r, args.compression, outputs);
+    writePngs(args.out, stem, pictures, outputs);
+  }
+  if (!args.report.empty()) {
+    progress.step(scene.name + ": writing report images");
+    writePngs(args.report, stem, pictures, outputs);
+  }
+  tally.allPass = tally.allPass && r.report.pass;
+  tally.reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report, auditLine(r.audit)});
+  tally.rows.push_back(checkJsonRow(scene, r, args.settings));
+  tally.junitCases.push_back({scene.name, seconds, r.report.reasons,
+                              std::to_string(r.triangles) + " triangles, " + gateFigures(r.report) + "; raster " +
+                                  formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms",
+                              r.report.warnings});
+}
+
+// The summary after the table, the notes on limits that did nothing, and the files that cover
+// every scene: the HTML report, --json and --junit.
+void finishCheck(const CheckArgs& args, const CheckTally& tally, const BenchResults& bench, WrittenOutputs& outputs) {
+  // The two times are for orientation; say so, so that nobody reads them as the speed-up.
+  std::printf("(raster ms, ref ms: one cold render each, the reference's with its BVH build; "
+              "rastercheck bench measures speed)\n");
+  std::printf("%zu scene(s): %s%s\n", tally.reportScenes.size(), tally.allPass ? "all pass" : "GATE FAILED",
+              tally.warned == 0 ? "" : ("; " + std::to_string(tally.warned) + " with warnings").c_str());
+  std::fflush(stdout);
+  std::vector<const CompareReport*> reports;
+  for (const ReportScene& s : tally.reportScenes) reports.push_back(&s.report);
+  noteUnappliedLimits(args.givenLimits, reports);
+  noteIdleFailOnWarnings(args.thresholds, args.baseline);
+  if (!args.report.empty()) {
+    outputs.write((fs::path(args.report) / "index.html").string(), [&](const std::string&) {
+      writeHtmlReport(args.report, tally.reportScenes, settingsLine(args.settings), bench);
+    });
+  }
+  if (!args.json.empty()) {
+    const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", tally.allPass ? "pass" : "fail"},
+                              {"settings", settingsLine(args.settings)}, {"scenes", tally.rows}};
+    outputs.writeText(args.json, jsonDocument(j));
+  }
+  if (!args.junit.empty()) {
+    outputs.writeText(args.junit, junitXml("rastercheck check", {{"settings", settingsLine(args.settings)}}, tally.junitCases));
+  }
+}
+
 int runCheck(CheckArgs& args) {
   finishRenderSettings(args.settings);
   setExrThreads(args.settings.threads);
@@ -188,18 +275,9 @@ int runCheck(CheckArgs& args) {
   checkOutputs(outputList, inputs);
   const BenchResults bench = args.benchJson.empty() ? BenchResults{} : readBenchJson(args.benchJson);
   const Baseline baseline = args.baseline.file.empty() ? Baseline{} : readBaseline(args.baseline.file, true);
-  std::map<std::string, std::size_t> occurrences;  // of each scene name so far, to pair with the baseline's
-  const bool wantPictures = !args.out.empty() || !args.report.empty();
   const int outputsPerScene = int(!args.out.empty()) + int(!args.report.empty());
   Progress progress(int(args.scenes.size()) * (2 + outputsPerScene), args.quiet);
-
-  // Load every scene first, so a bad name or file fails before any work is done.
-  std::vector<Scene> scenes;
-  for (const std::string& spec : args.scenes) {
-    progress.step("loading " + spec);
-    scenes.push_back(loadScene(spec, args.settings));
-    requireAttributeLimitsApply(scenes.back(), spec, args.thresholds, args.settings);
-  }
+  const std::vector<Scene> scenes = loadCheckScenes(args, progress);
   // The folders are made before any scene is rendered, so one that cannot be fails first.
   WrittenOutputs outputs;
   if (!args.out.empty()) outputs.makeFolder(args.out);
@@ -211,67 +289,11 @@ int runCheck(CheckArgs& args) {
   for (const Scene& scene : scenes) nameWidth = std::max(nameWidth, int(scene.name.size()));
   std::printf("%-*s %9s %11s %-7s %9s %9s %9s %9s %9s %9s\n", nameWidth, "scene", "triangles", "size", "verdict", "bary max",
               "bary p999", "depth max", "disagree", "raster ms", "ref ms");
-  nlohmann::json rows = nlohmann::json::array();
-  std::vector<ReportScene> reportScenes;
-  std::vector<JUnitCase> junitCases;
-  std::set<std::string> stems;
-  bool allPass = true;
-  std::size_t warned = 0;  // scenes with a warning
-  for (const Scene& scene : scenes) {
-    progress.step(scene.name + ": rasterizer, reference, compare");
-    const long long started = nowNanoseconds();
-    CheckResult r = checkScene(scene, args.settings, args.thresholds, wantPictures);
-    const std::size_t occurrence = occurrences[scene.name]++;
-    if (!args.baseline.file.empty()) {
-      holdSceneToBaseline(r.report, scene.name, occurrence, r.triangles, baseline, args.baseline);
-    }
-    const double seconds = millisecondsSince(started) * 1e-3;
-    printSceneLine(scene, r, nameWidth, args.verbose);
-    warned += !r.report.warnings.empty();
-    const std::string stem = fileStem(scene.name, stems);
-    const ScenePictures pictures = wantPictures ? ScenePictures{displayImage(r.raster), displayImage(r.reference),
-                                                               heatmapImage(r.heatmap)}
-                                               : ScenePictures{};
-    if (!args.out.empty()) {
-      progress.step(scene.name + ": writing EXR and PNG files");
-      writeExrs(args.out, stem, r, args.compression, outputs);
-      writePngs(args.out, stem, pictures, outputs);
-    }
-    if (!args.report.empty()) {
-      progress.step(scene.name + ": writing report images");
-      writePngs(args.report, stem, pictures, outputs);
-    }
-    allPass = allPass && r.report.pass;
-    reportScenes.push_back({scene.name, stem, r.triangles, r.rasterMs, r.referenceMs, r.report, auditLine(r.audit)});
-    rows.push_back(checkJsonRow(scene, r, args.settings));
-    junitCases.push_back({scene.name, seconds, r.report.reasons,
-                          std::to_string(r.triangles) + " triangles, " + gateFigures(r.report) + "; raster " +
-                              formatNumber(r.rasterMs) + " ms, reference " + formatNumber(r.referenceMs) + " ms",
-                          r.report.warnings});
-  }
-  // The two times are for orientation; say so, so that nobody reads them as the speed-up.
-  std::printf("(raster ms, ref ms: one cold render each, the reference's with its BVH build; "
-              "rastercheck bench measures speed)\n");
-  std::printf("%zu scene(s): %s%s\n", scenes.size(), allPass ? "all pass" : "GATE FAILED",
-              warned == 0 ? "" : ("; " + std::to_string(warned) + " with warnings").c_str());
-  std::fflush(stdout);
-  std::vector<const CompareReport*> reports;
-  for (const ReportScene& s : reportScenes) reports.push_back(&s.report);
-  noteUnappliedLimits(args.givenLimits, reports);
-  noteIdleFailOnWarnings(args.thresholds, args.baseline);
-  if (!args.report.empty()) {
-    outputs.write((fs::path(args.report) / "index.html").string(), [&](const std::string&) {
-      writeHtmlReport(args.report, reportScenes, settingsLine(args.settings), bench);
-    });
-  }
-  if (!args.json.empty()) {
-    const nlohmann::json j = {{"format_version", kReportFormatVersion}, {"verdict", allPass ? "pass" : "fail"},
-                              {"settings", settingsLine(args.settings)}, {"scenes", rows}};
-    outputs.writeText(args.json, jsonDocument(j));
-  }
-  if (!args.junit.empty()) outputs.writeText(args.junit, junitXml("rastercheck check", {{"settings", settingsLine(args.settings)}}, junitCases));
+  CheckTally tally;
+  for (const Scene& scene : scenes) checkOneScene(scene, args, baseline, nameWidth, progress, outputs, tally);
+  finishCheck(args, tally, bench, outputs);
   outputs.keep();
-  return allPass ? 0 : 1;
+  return tally.allPass ? 0 : 1;
 }
 
 }  // namespace
