@@ -87,11 +87,18 @@ struct ExactTriangle : AuditTriangle {
 // (In huge pages, as the frame's planes: in 4 KB pages, faulting the 44 MB of a 1920x1080 frame in
 // took longer than the audit's work.)
 struct PixelState {
-  PlaneVector<std::uint8_t> flags;  // kOwned, kOnEdge
+  PlaneVector<std::uint8_t> flags;  // kOwned, kOnEdge; kDiagnosed and what some owning set-up met
   PlaneVector<double> writtenHigh;  // the written triangle's depth key there, plus its error bound
   PlaneVector<double> otherLow;     // the nearest other owner's key, less its error bound
   PlaneVector<std::uint32_t> otherOwner;
   static constexpr std::uint8_t kOwned = 1, kOnEdge = 2;
+  // A covered pixel's diagnostics were held to the set-ups of its triangle that cover it, and
+  // those one of them met. Snapping can turn a sub-triangle of a clipped polygon over, so that it
+  // overlaps its neighbour: two set-ups of the written triangle then cover the pixel, and the
+  // diagnostics are those of the one that won the depth test, which the audit, with keys equal
+  // up to rounding (one plane), cannot name. They must meet one of them.
+  static constexpr std::uint8_t kDiagnosed = 4, kBoundMet = 8, kEdgeDistanceMet = 16, kDepthTieMet = 32;
+  static constexpr std::uint8_t kAllMet = kBoundMet | kEdgeDistanceMet | kDepthTieMet;
 
   explicit PixelState(std::size_t n)
       : flags(n, 0), writtenHigh(n, -std::numeric_limits<double>::infinity()),
@@ -142,28 +149,35 @@ struct UnsnappedEdges {
   }
 };
 
-// The pixel's diagnostics against the set-up that owns it. The rasterizer evaluates l_i
-// |grad l_i|^-1 in Real from planes anchored at the box's centre: its error is under 4 u (|l0| h
-// + 2 R) + 2 u d pixels (docs/numerics.md, "The rasterizer's bound", with |l0| h <= d + 2 R),
-// counted here as 16 u (d + 2 R + 1), plus the float output's 2^-23 d and this double
-// evaluation's own error. A diagonal inside a clipped polygon counts only for a centre beyond
-// it (tile_resolve.h's diagnosticsOf), here as soon as the centre may be beyond it.
+// The pixel's diagnostics against one set-up that owns it: each met, or its values written and
+// audited. The rasterizer evaluates l_i |grad l_i|^-1 in Real from planes anchored at the box's
+// centre: its error is under 4 u (|l0| h + 2 R) + 2 u d pixels (docs/numerics.md, "The
+// rasterizer's bound", with |l0| h <= d + 2 R), counted here as 16 u (d + 2 R + 1), plus the
+// float output's 2^-23 d and this double evaluation's own error. A diagonal inside a clipped
+// polygon counts only for a centre beyond it (tile_resolve.h's diagnosticsOf), here as soon as
+// the centre may be beyond it.
+struct HeldDiagnostics {
+  std::uint8_t met = 0;  // PixelState::kBoundMet, kEdgeDistanceMet, kDepthTieMet
+  CoverageAudit::Diagnostic bound, edgeDistance, depthTie;
+};
+
 template <typename Real>
-void auditDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, const ShadeSetup<Real>& shade, int px,
-                      int py, std::size_t p, double keyTerms, const Diagnostics& diag, CoverageAudit& audit) {
+HeldDiagnostics holdDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, const ShadeSetup<Real>& shade,
+                                int px, int py, std::size_t p, double keyTerms, const Diagnostics& diag) {
+  HeldDiagnostics held;
+  const std::uint32_t triangle = s.coverage.source.triangle;
   // The error bounds: at most the set-up's own, which setupShade gives every pixel it wins.
   if (!(diag.baryBound[p] <= shade.baryBound && diag.depthBound[p] <= shade.depthBound)) {
     const bool bary = !(diag.baryBound[p] <= shade.baryBound);
-    if (audit.boundWide++ == 0) {
-      audit.firstBoundWide = {px, py, s.coverage.source.triangle, bary ? diag.baryBound[p] : diag.depthBound[p],
-                              bary ? shade.baryBound : shade.depthBound};
-    }
+    held.bound = {px, py, triangle, bary ? diag.baryBound[p] : diag.depthBound[p], bary ? shade.baryBound : shade.depthBound};
+  } else {
+    held.met |= PixelState::kBoundMet;
   }
   const double u = s.context.unitRoundoff, R = edges.R, ownError = edges.ownError;
   const double cx = px + 0.5, cy = py + 0.5;
   double nearest = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
-    if (edges.scale[i] == 0.0) return;
+    if (edges.scale[i] == 0.0) return {PixelState::kAllMet, {}, {}, {}};  // no set-up has zero area
     const double d = edges.signedDistance(i, cx, cy);
     if (edges.inner & (1u << i)) {
       const double slack = 16.0 * u * (std::fabs(d) + 2.0 * R + 1.0) + ownError;
@@ -172,26 +186,35 @@ void auditDiagnostics(const VisitedSetup<Real>& s, const UnsnappedEdges& edges, 
       nearest = std::min(nearest, std::fabs(d));
     }
   }
-  ++audit.diagnosed;
   const double tolerance = 16.0 * u * (nearest + 2.0 * R + 1.0) + 0x1p-23 * nearest + ownError;
   const double written = diag.edgeDistance[p];
   if (!(written >= nearest - tolerance)) {
-    if (audit.edgeDistanceShort++ == 0) audit.firstEdgeDistanceShort = {px, py, s.coverage.source.triangle, written, nearest};
+    held.edgeDistance = {px, py, triangle, written, nearest};
+  } else {
+    held.met |= PixelState::kEdgeDistanceMet;
   }
   // depth.tie: 5 u (|key0| + |keyX dx| + |keyY dy|) depth / keyB, times 1 + 2^-16 for its own
   // roundings (rasterizer.cpp's tieScale); here in double, from the depth written, which lies
-  // within 2^-24 of the one the rasterizer multiplied by.
+  // within 2^-24 of the one the rasterizer multiplied by. Where that depth is negative (a
+  // snapped set-up covering a centre its unsnapped plane puts behind the eye), so is the tie,
+  // and the slack is taken from its magnitude.
   const double tie = 5.0 * u / s.context.keyB * (1.0 + 0x1p-16) * keyTerms * double(diag.depth[p]);
-  const double wide = tie * (1.0 + 16.0 * u + 0x1p-22);
+  const double wide = tie + std::fabs(tie) * (16.0 * u + 0x1p-22);
   const double tieWritten = diag.depthTie[p];
   if (!(tieWritten <= wide)) {
-    if (audit.depthTieWide++ == 0) audit.firstDepthTieWide = {px, py, s.coverage.source.triangle, tieWritten, tie};
+    held.depthTie = {px, py, triangle, tieWritten, tie};
+  } else {
+    held.met |= PixelState::kDepthTieMet;
   }
+  return held;
 }
 
+// The first pass (firsts null) decides coverage and the depth test at every centre the set-up
+// covers, and marks which diagnostics it meets; the second, run only when some pixel met none of
+// its owners' (firsts non-null), records the first such of each kind, in set-up order.
 template <typename Real, typename Triangle>
 void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint32_t* written, int width,
-                const Diagnostics& diag, PixelState& state, CoverageAudit& audit) {
+                const Diagnostics& diag, PixelState& state, CoverageAudit* firsts) {
   if (t.orientation == 0) return;
   const CoverageSetup<Real>& c = s.coverage;
   // What the diagnostics are held to, made once for a set-up that owns a pixel.
@@ -215,39 +238,54 @@ void auditSetup(const VisitedSetup<Real>& s, const Triangle& t, const std::uint3
       const double terms = std::fabs(key0) + std::fabs(kx) + std::fabs(ky);
       const double key = key0 + kx + ky, bound = 5.0 * u * terms;
       const std::size_t p = std::size_t(py) * std::size_t(width) + std::size_t(px);
-      if (c.source.triangle == written[p]) {
-        state.flags[p] |= PixelState::kOwned | (onEdge ? PixelState::kOnEdge : 0);
-        state.writtenHigh[p] = std::max(state.writtenHigh[p], key + bound);
-        if (diag.edgeDistance) {
-          if (!edges) {
-            edges.emplace(s);
-            setupShade(s.clip, s.raster, s.innerEdges, c.source.clipped >= 0, s.context, c, shade);
-          }
-          auditDiagnostics(s, *edges, shade, px, py, p, terms, diag, audit);
+      const bool owns = c.source.triangle == written[p];
+      if (!firsts) {
+        if (owns) {
+          state.flags[p] |= PixelState::kOwned | (onEdge ? PixelState::kOnEdge : 0);
+          state.writtenHigh[p] = std::max(state.writtenHigh[p], key + bound);
+        } else if (key - bound > state.otherLow[p]) {
+          state.otherLow[p] = key - bound;
+          state.otherOwner[p] = c.source.triangle;
         }
-      } else if (key - bound > state.otherLow[p]) {
-        state.otherLow[p] = key - bound;
-        state.otherOwner[p] = c.source.triangle;
       }
+      const std::uint8_t unmet = PixelState::kAllMet & ~state.flags[p];
+      if (!owns || !diag.edgeDistance || (firsts && unmet == 0)) continue;
+      if (!edges) {
+        edges.emplace(s);
+        setupShade(s.clip, s.raster, s.innerEdges, c.source.clipped >= 0, s.context, c, shade);
+      }
+      const HeldDiagnostics held = holdDiagnostics(s, *edges, shade, px, py, p, terms, diag);
+      if (!firsts) {
+        state.flags[p] |= PixelState::kDiagnosed | held.met;
+        continue;
+      }
+      // Each kind's first: a pixel no owner met it at; `written` is its own there.
+      const auto first = [&](std::uint8_t kind, const CoverageAudit::Diagnostic& value, CoverageAudit::Diagnostic& into) {
+        if ((unmet & kind) && into.x < 0) into = value;
+      };
+      first(PixelState::kBoundMet, held.bound, firsts->firstBoundWide);
+      first(PixelState::kEdgeDistanceMet, held.edgeDistance, firsts->firstEdgeDistanceShort);
+      first(PixelState::kDepthTieMet, held.depthTie, firsts->firstDepthTieWide);
     }
   }
 }
 
 template <typename Real>
 void auditSetups(const Scene& scene, const RasterOptions& options, const std::uint32_t* written,
-                 const Diagnostics& diag, PixelState& state, CoverageAudit& audit) {
+                 const Diagnostics& diag, PixelState& state, CoverageAudit& audit, CoverageAudit* firsts) {
   const int width = scene.camera.width(), height = scene.camera.height();
   forEachSetup<Real>(scene, options, [&](const VisitedSetup<Real>& s) {
     const CoverageSetup<Real>& c = s.coverage;
     if (options.subpixelBits != 0) {
       const SnappedTriangle t(c.x, c.y, options.subpixelBits, width, height);
-      if (const int off = cornersOffGrid(c.x, c.y, s.raster, options.subpixelBits)) {
+      const int off = firsts ? 0 : cornersOffGrid(c.x, c.y, s.raster, options.subpixelBits);
+      if (off) {
         if (audit.offGrid == 0) audit.firstOffGrid = c.source.triangle;
         audit.offGrid += std::size_t(off);
       }
-      auditSetup(s, t, written, width, diag, state, audit);
+      auditSetup(s, t, written, width, diag, state, firsts);
     } else {
-      auditSetup(s, ExactTriangle(s.raster, width, height), written, width, diag, state, audit);
+      auditSetup(s, ExactTriangle(s.raster, width, height), written, width, diag, state, firsts);
     }
   });
 }
@@ -378,11 +416,23 @@ CoverageAudit auditCoverage(const Scene& scene, const RasterOptions& options, co
     diag = {edgeDistance->floats.data(), depthTie->floats.data(), depth->floats.data(), baryBound->floats.data(),
             depthBound->floats.data()};
   }
-  if (options.precision == Precision::kFloat) {
-    auditSetups<float>(scene, options, written, diag, state, audit);
-  } else {
-    auditSetups<double>(scene, options, written, diag, state, audit);
+  const auto pass = [&](CoverageAudit* firsts) {
+    if (options.precision == Precision::kFloat) {
+      auditSetups<float>(scene, options, written, diag, state, audit, firsts);
+    } else {
+      auditSetups<double>(scene, options, written, diag, state, audit, firsts);
+    }
+  };
+  pass(nullptr);
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::uint8_t f = state.flags[p];
+    if (!(f & PixelState::kDiagnosed)) continue;
+    ++audit.diagnosed;
+    audit.boundWide += !(f & PixelState::kBoundMet);
+    audit.edgeDistanceShort += !(f & PixelState::kEdgeDistanceMet);
+    audit.depthTieWide += !(f & PixelState::kDepthTieMet);
   }
+  if (audit.boundWide + audit.edgeDistanceShort + audit.depthTieWide > 0) pass(&audit);
   for (std::size_t p = 0; p < n; ++p) {
     const bool covered = written[p] != channels::kNoTriangle;
     const bool owned = state.flags[p] & PixelState::kOwned;

@@ -54,8 +54,9 @@ struct CoverageAudit {
   // Covered pixels whose diagnostics were checked (0 for a frame without them), those whose
   // edge.dist is shorter than the centre's distance from the owning set-up's edges, and those
   // whose depth.tie is wider than its depth key's bound; each beyond the rounding of the
-  // rasterizer's own evaluation. The first found of each, with the value written and the
-  // audit's.
+  // rasterizer's own evaluation. Where two set-ups of the written triangle cover the centre
+  // (snapped sub-triangles of a clipped polygon that overlap), meeting either's is enough. The
+  // first found of each in set-up order, with the value written and the audit's.
   std::size_t diagnosed = 0, edgeDistanceShort = 0, depthTieWide = 0;
   // Covered pixels whose bound.bary or bound.depth is wider than the owning set-up's bound.
   std::size_t boundWide = 0;
