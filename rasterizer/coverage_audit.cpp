@@ -345,18 +345,26 @@ struct DrawnVertexBounds {
   }
   // Any point of a clipped triangle that is drawn: clip coordinates are linear over the
   // triangle, so its w is at least the vertices' least (and near); with every w positive, its
-  // |ndc| is a weighted mean of theirs, at most their largest (and the guard band's).
+  // |ndc| is a weighted mean of theirs, at most their largest (and the guard band's). But the
+  // clipper computes each new vertex in double, between two others (clip.h), and may put it past
+  // the plane by a few u of their |w|: 128 u of the largest |w| covers the six planes. Where
+  // that matters, on a triangle whose w spans 5e7 to -4e7 across a near plane of 0.1 (huge,
+  // seen through 179 degrees), a vertex came out at w = 0.1 - 6e-9.
   double clippedShift(const glm::dvec4 (&c)[3]) const {
-    double w = std::numeric_limits<double>::infinity(), ndc = 0.0;
+    double w = std::numeric_limits<double>::infinity(), ndc = 0.0, largestW = 0.0;
     bool ahead = true;
     for (const glm::dvec4& v : c) {
       const double e = slack(v), low = v.w - e;
       w = std::min(w, low);
+      largestW = std::max(largestW, std::fabs(v.w) + e);
       ahead = ahead && low > 0.0;
       if (ahead) ndc = std::max(ndc, (std::max(std::fabs(v.x), std::fabs(v.y)) + e) / low);
     }
-    w = std::max(w, zNear);
-    return shift(w, ahead ? std::min(ndc, guard) : guard);
+    // Not below half the near plane: a rasterizer whose clipped vertices stray that far draws
+    // them wrongly, and the audit says so.
+    const double interpolation = 128.0 * 0x1p-53 * largestW;
+    const double low = std::max(std::max(w, zNear) - interpolation, 0.5 * zNear);
+    return shift(low, (ahead ? std::min(ndc, guard) : guard) + interpolation / low);
   }
 };
 

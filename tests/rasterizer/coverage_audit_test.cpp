@@ -295,6 +295,39 @@ TEST(CoverageAudit, TheEdgeBandCeilingIsTheBandWithinAThousandthAtEightBits) {
   }
 }
 
+// Found by checking `huge` through random cameras: a triangle whose w runs from 5e7 to -4e7 is
+// clipped at a near plane of 0.1, and the clipper's double arithmetic puts the new vertex at
+// w = 0.1 - 6e-9, whose shift the rasterizer's band rightly counts. The ceiling took every drawn
+// w to be at least near, and fell short of the band by 6e-8 of it at each of these cameras.
+TEST(CoverageAudit, TheEdgeBandCeilingCountsTheClippersRounding) {
+  struct View {
+    int width, height;
+    glm::dvec3 eye, target;
+    double fov;
+    int bits;
+    DepthMapping depth;
+  };
+  for (const View& v : {View{3, 200, {-1.18054801, 0.864845846, -0.329162645}, {-0.0583327191, 0.111128943, -0.289344795},
+                             20.0, 1, DepthMapping::kStandard},
+                        View{320, 240, {-0.0873906629, 3.81659204, 7.03036187}, {0.260026635, 0.293284277, -0.270779353},
+                             179.0, 16, DepthMapping::kInverseW},
+                        View{97, 61, {-0.578194208, -2.84971698, 0.738108775}, {-0.21491482, -0.245677508, -0.112513624},
+                             179.0, 2, DepthMapping::kStandard}}) {
+    SceneOverrides view;
+    view.width = v.width, view.height = v.height;
+    view.eye = v.eye, view.target = v.target, view.fovYDegrees = v.fov;
+    const Scene scene = loadScene("huge", view);
+    RasterOptions options;
+    options.subpixelBits = v.bits;
+    options.depthMapping = v.depth;
+    const Framebuffer frame = rasterize(scene, options);
+    const CoverageAudit audit = auditCoverage(scene, options, frame);
+    EXPECT_EQ(audit.violations(), 0u) << v.bits << " bits: band " << audit.edgeBand << ", at most " << audit.edgeBandLimit;
+    // Still within a ten-thousandth of the band: one bit fewer, or a band 1% wider, fails.
+    EXPECT_LE(audit.edgeBandLimit, 1.0001 * audit.edgeBand) << v.bits << " bits";
+  }
+}
+
 // compare explains a pixel one path drew at the near or far plane by the planes in either
 // image's camera line; the frame's must be the scene's.
 TEST(CoverageAudit, HoldsTheHeadersCameraLineToTheScene) {
