@@ -145,6 +145,8 @@ struct Family {
   std::string name;
   enum Kind { kBary, kDepth, kAttribute } kind;
   std::vector<const float*> test, reference;
+  // An attribute's: the reference's spread.NAME (channels::spreadChannel), or null.
+  const float* spread = nullptr;
 };
 
 std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& testPath,
@@ -216,6 +218,8 @@ std::vector<Family> collectFamilies(const Framebuffer& test, const std::string& 
       f.test.push_back(require(test, testPath, name, ChannelType::kFloat, refPath, hint).floats.data());
       f.reference.push_back(require(ref, refPath, name, ChannelType::kFloat, testPath, hint).floats.data());
     }
+    const std::string spread = channels::spreadChannel(family.substr(prefix.size()));
+    if (ref.find(spread)) f.spread = require(ref, refPath, spread, ChannelType::kFloat, "").floats.data();
     families.push_back(f);
   }
   return families;
@@ -350,12 +354,15 @@ FamilyReport measureFamily(const Family& f, const PlaneVector<PixelClass>& class
       ulp = std::max(ulp, e / unit);
       if (bounded) {
         // The bound of docs/numerics.md: barycentrics and depth add the two paths' bounds;
-        // an attribute adds their barycentric bounds times three times its range (the sum
-        // of |db_i| |a_i - c| over a triangle's vertices) and float rounding of the sums.
+        // an attribute adds their barycentric bounds times three times its spread (the sum
+        // of |db_i| |a_i - c| over a triangle's vertices) and float rounding of the sums. The
+        // spread is the triangle's, where the reference gives it, else the image's range;
+        // never below the range, which a triangle's values may exceed but rarely fall short of.
         const double bary = double(d.boundTest[0][i]) + double(d.boundRef[0][i]);
+        const double spread = f.spread ? std::max(fr.range, double(f.spread[i])) : fr.range;
         const double bound = f.kind == Family::kBary    ? bary
                              : f.kind == Family::kDepth ? double(d.boundTest[1][i]) + double(d.boundRef[1][i])
-                                                        : 3.0 * bary * fr.range + 0x1p-21 * (std::fabs(r) + fr.range);
+                                                        : 3.0 * bary * spread + 0x1p-21 * (std::fabs(r) + spread);
         const double q = bound > 0.0 ? e / bound : (e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
         ratio = std::max(ratio, q);
       }

@@ -23,6 +23,11 @@ inline constexpr const char* kEdgeDistance = "edge.dist";  // pixels from the ce
 inline constexpr const char* kDepthTie = "depth.tie";  // rasterizer: relative depth difference
                                                        // its depth test cannot order here
 
+// The reference's, per attribute: the largest spread, over the attribute's components, of its
+// values at the three vertices of the triangle hit (max - min), for compare's attribute bound,
+// which it holds to the triangle's values rather than to the image's range ("spread.uv").
+inline std::string spreadChannel(const std::string& attribute) { return "spread." + attribute; }
+
 // "attr.uv.x" for component 0 of attribute "uv".
 inline std::string attributeChannel(const std::string& attribute, int component) {
   static const char* kComponents[4] = {"x", "y", "z", "w"};

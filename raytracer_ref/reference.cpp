@@ -183,6 +183,7 @@ void ReferenceTracer::trace(Framebuffer& fb) const {
                              source.empty() ? nullptr : source.data(), rightOffsets.data(), impl_->clipCuts, {}, {}};
   for (const Attribute& a : scene.mesh.attributes) {
     for (int c = 0; c < a.components; ++c) names.push_back(channels::attributeChannel(a.name, c));
+    names.push_back(channels::spreadChannel(a.name));
     input.attributes.push_back({a.values.data(), a.components});
   }
   fb.recycle(camera.width(), camera.height(), names);

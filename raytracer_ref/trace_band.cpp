@@ -207,6 +207,7 @@ struct Tracer {
     int plane = kAttributePlanes;
     for (const BandInput::Attribute& a : in.attributes) {
       const int n = a.components;
+      f64x4 spread{};
       for (int c = 0; c < n; ++c) {
         f64x4 value[3]{};
         if (shared) {
@@ -217,7 +218,12 @@ struct Tracer {
           }
         }
         write(plane++, b.x * value[0] + b.y * value[1] + b.z * value[2]);
+        const f64x4 high = lanes::stdMax<kWidth>(value[0], lanes::stdMax<kWidth>(value[1], value[2]));
+        const f64x4 low = -lanes::stdMax<kWidth>(-value[0], lanes::stdMax<kWidth>(-value[1], -value[2]));
+        spread = lanes::stdMax<kWidth>(spread, high - low);
       }
+      // Rounded up to float: compare's bound must not shrink by the output's rounding.
+      write(plane++, spread * (1.0 + 0x1p-23));
     }
   }
 

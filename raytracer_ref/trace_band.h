@@ -17,7 +17,8 @@ namespace rc::reference {
 constexpr int kBlock = 4;  // a packet is kBlock x kBlock pixels; a lane row is one block row
 
 // The output planes, in this order, float planes as their bits: tri.id, bary.b0..b2,
-// depth.z, bound.bary, bound.depth, edge.dist, then each attribute's components in turn.
+// depth.z, bound.bary, bound.depth, edge.dist, then each attribute's components in turn and
+// its spread (channels::spreadChannel).
 enum : int {
   kIdPlane = 0,
   kBaryPlane = 1,

@@ -772,6 +772,35 @@ TEST(CompareLimits, AnAttributePassesAtItsBoundAndFailsOneStepBeyond) {
   }
 }
 
+// Where the reference gives the hit triangle's spread of the attribute (spread.uv), the bound
+// takes it in place of the image's range when it is wider: a triangle whose values reach far
+// beyond what the image shows (a close-up, a small image) errs by its own spread times the
+// barycentric error. A spread of 90 at (2, 3) makes the bound 3 * 3 * 2^-21 * 90 + 2^-21 *
+// 92 = 902 * 2^-21, 1804 steps of 2^-22; a spread below the range changes nothing.
+TEST(CompareLimits, AnAttributesBoundTakesTheTrianglesSpreadWhereItExceedsTheRange) {
+  for (const float spread : {90.0f, 1.0f}) {
+    const int steps = spread > 9.0f ? 1804 : 184;
+    for (const int n : {steps, steps + 1}) {
+      Framebuffer test = diagnosed(true), ref = diagnosed(false);
+      ref.addFloat(channels::spreadChannel("uv"), spread);
+      at(test, channels::attributeChannel("uv", 0).c_str(), 2, 3) = float(2.0 + n * 0x1p-22);
+      const CompareReport r = compared(test, ref);
+      EXPECT_EQ(family(r, "attr.uv").range, 9.0);
+      EXPECT_EQ(family(r, "attr.uv").gated, double(n) / steps) << spread << ", " << n;
+      EXPECT_EQ(r.pass, n == steps) << spread << ", " << n << " steps: " << reasons(r);
+    }
+  }
+  // The test image's own spread channel, or one of another type, is not read as the reference's.
+  Framebuffer test = diagnosed(true), ref = diagnosed(false);
+  test.addFloat(channels::spreadChannel("uv"), 90.0f);
+  at(test, channels::attributeChannel("uv", 0).c_str(), 2, 3) = float(2.0 + 185 * 0x1p-22);
+  EXPECT_FALSE(compared(test, ref).pass);
+  Framebuffer wrongType = diagnosed(false);
+  wrongType.addUint(channels::spreadChannel("uv"), 90);
+  rc::testing::expectError([&] { compared(test, wrongType); }, ExitCode::kBadInput,
+                           {"r.exr: channel spread.uv", "is UINT"}, "a UINT spread");
+}
+
 // A pixel where the paths disagree on the triangle, 1 apart in depth (no tie), is explained
 // when either path's edge.dist is within the sum of the headers' bands, and only then.
 TEST(CompareLimits, ADisagreementIsInTheEdgeBandUpToTheSumOfBothBandsFromEitherPath) {

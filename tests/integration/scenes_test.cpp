@@ -109,6 +109,29 @@ TEST(Gate, TheFarPlaneCutsAndTiesAreExplained) {
   }
 }
 
+// Found by checking hard scenes through random cameras: the attributes scene's 'mixed'
+// attribute (values near +-1e30 that cancel to 6e27 at the pixel) in a 1x1 image, whose range is
+// 0, failed the right rasterizer at 6.18 times the bound taken from that range. Its error is the
+// barycentric error times the triangle's spread, which the reference's spread.mixed now gives.
+TEST(Gate, AttributeBoundsHoldTheTrianglesSpreadWhereTheImageShowsLittleOfIt) {
+  app::RenderSettings s = settings(Interpolation::kPerspective);
+  s.size = "1x1";
+  s.eye = "-0.537395502,-0.480854786,1.31528885";
+  s.target = "-0.245581155,-0.194808867,0.0134255661";
+  s.fovYDegrees = 150.0;
+  const Scene scene = app::loadScene("attributes", s);
+  const app::CheckResult r = app::checkScene(scene, s, Thresholds{}, false);
+  EXPECT_TRUE(r.report.pass) << reasons(r.report);
+  const FamilyReport* mixed = nullptr;
+  for (const FamilyReport& f : r.report.families) mixed = f.name == "attr.mixed" ? &f : mixed;
+  ASSERT_NE(mixed, nullptr);
+  EXPECT_EQ(mixed->range, 0.0) << "one pixel: no range";
+  EXPECT_GT(mixed->stats.max, 1e21) << "the error the old bound refused";
+  // Affine interpolation still fails it.
+  s.raster.interpolation = Interpolation::kAffine;
+  EXPECT_FALSE(app::checkScene(scene, s, Thresholds{}, false).report.pass);
+}
+
 TEST(Gate, AffineFailsTheHardCasesWithPerspective) {
   for (const char* name : {"fans", "edges", "perspective", "grazing", "nearplane", "attributes"}) {
     const app::CheckResult r =

@@ -104,6 +104,37 @@ TEST(Reference, HeaderBoundsReadBackExactly) {
   }
 }
 
+// spread.NAME: at each hit, the largest over the components of max - min of the hit triangle's
+// three vertex values, rounded up to float; 0 where nothing was hit.
+TEST(Reference, WritesEachAttributesSpreadOverTheHitTriangle) {
+  for (const char* name : {"sphere", "attributes"}) {
+    const Scene scene = makeBuiltinScene(name);
+    const Framebuffer fb = renderReference(scene, singleThread());
+    const auto& ids = fb.find(channels::kTriangleId)->uints;
+    for (const Attribute& a : scene.mesh.attributes) {
+      const Channel* spread = fb.find(channels::spreadChannel(a.name));
+      ASSERT_NE(spread, nullptr) << name << ": " << a.name;
+      std::size_t hits = 0;
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (ids[i] == channels::kNoTriangle) {
+          ASSERT_EQ(spread->floats[i], 0.0f);
+          continue;
+        }
+        double expected = 0.0;
+        const glm::uvec3 t = scene.mesh.triangles[ids[i]];
+        for (int c = 0; c < a.components; ++c) {
+          const auto value = [&](int k) { return double(a.values[std::size_t(t[k]) * a.components + c]); };
+          expected = std::max(expected, std::max({value(0), value(1), value(2)}) - std::min({value(0), value(1), value(2)}));
+        }
+        ASSERT_GE(double(spread->floats[i]), expected) << name << " " << a.name << " at " << i;
+        ASSERT_LE(double(spread->floats[i]), expected * (1.0 + 0x1p-22)) << name << " " << a.name << " at " << i;
+        ++hits;
+      }
+      EXPECT_GT(hits, 0u) << name << ": " << a.name;
+    }
+  }
+}
+
 TEST(Reference, OutputBitsAreIdenticalForOneAndTwoThreads) {
   const Scene scene = makeBuiltinScene("sphere");
   const Framebuffer one = renderReference(scene, singleThread());
