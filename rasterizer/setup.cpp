@@ -29,13 +29,16 @@ formulas::Anchored<double> anchoredOf(const glm::dvec4 clip[3], const glm::dvec2
 }
 
 // The depth-key plane of a set-up whose box is made, at its anchor. False when the unsnapped
-// area rounds to 0 in double: the snapped triangle (or, without snapping, the exact one) has
-// area, and the double one can only lose it to a needle far below a pixel. No barycentrics
-// exist for it: it is dropped.
+// area in double is within its own rounding (Anchored::noise) of 0: the snapped triangle (or,
+// without snapping, the exact one) has area, and the double one can only lose it to a needle
+// far below a pixel. No barycentrics exist for it in any precision: it is dropped. (Until
+// session 50 only an area of exactly 0 was: a needle one ulp from collinear, seen from 45 away
+// at 2 subpixel bits, kept an area of its rounding, planes of 1e15, and wrote Inf barycentrics
+// and a NaN depth in float.)
 template <typename Real>
 bool setupPlanes(const glm::dvec4 clip[3], const glm::dvec2 raster[3], const SetupContext& ctx, CoverageSetup<Real>& c) {
   const formulas::Anchored<double> a = anchoredOf(clip, raster, c.anchorX(), c.anchorY());
-  if (!(a.area != 0.0)) return false;
+  if (!(std::fabs(a.area) > a.noise)) return false;
   const formulas::KeyPlane<double> key = formulas::keyPlaneOf(a, ctx);
   c.key0 = Real(key.key0);
   c.keyX = Real(key.keyX);

@@ -95,7 +95,7 @@ RC_BATCH_INLINE unsigned finishCoverage4(const f64x4 rx[3], const f64x4 ry[3], c
   const f64x4 anchorY = minY + floorOf<kWidth>((maxY - minY) * 0.5);
   const f64x4 ax = anchorX + 0.5, ay = anchorY + 0.5;
   const formulas::Anchored<f64x4> an = formulas::anchoredOf(rx, ry, w, ax, ay);
-  accept &= split::notEqual<kWidth>(an.area, 0.0);
+  accept &= split::greater<kWidth>(lanes::absOf(an.area), an.noise);  // setup.cpp's setupPlanes
   const formulas::KeyPlane<f64x4> key = formulas::keyPlaneOf(an, ctx);
 
   // Out to the records, lane by lane; lanes not accepted are zeroed before the conversions.

@@ -50,10 +50,12 @@ RC_FORMULA_INLINE f64x4 lengthOf(const f64x4& squares, const f64x4& lx, const f6
 }
 
 // The vertices relative to the anchor pixel's centre (ax, ay), their 1/w, and the doubled
-// signed area of the unsnapped triangle: what both halves of the set-up start from.
+// signed area of the unsnapped triangle: what both halves of the set-up start from. `noise`
+// bounds the rounding of `area`: its two products' magnitudes times 16 u (the anchoring, the
+// differences, the products and their difference each round once, 8 u in all, doubled).
 template <typename V>
 struct Anchored {
-  V x[3], y[3], invW[3], area;
+  V x[3], y[3], invW[3], area, noise;
 };
 
 template <typename V>
@@ -64,7 +66,9 @@ RC_FORMULA_INLINE Anchored<V> anchoredOf(const V rx[3], const V ry[3], const V w
     a.y[i] = ry[i] - ay;
     a.invW[i] = 1.0 / w[i];
   }
-  a.area = (a.x[1] - a.x[0]) * (a.y[2] - a.y[0]) - (a.y[1] - a.y[0]) * (a.x[2] - a.x[0]);
+  const V p = (a.x[1] - a.x[0]) * (a.y[2] - a.y[0]), q = (a.y[1] - a.y[0]) * (a.x[2] - a.x[0]);
+  a.area = p - q;
+  a.noise = 16.0 * 0x1p-53 * (absOf(p) + absOf(q));
   return a;
 }
 
