@@ -219,7 +219,7 @@ struct Tracer {
         }
         write(plane++, b.x * value[0] + b.y * value[1] + b.z * value[2]);
         const f64x4 high = lanes::stdMax<kWidth>(value[0], lanes::stdMax<kWidth>(value[1], value[2]));
-        const f64x4 low = -lanes::stdMax<kWidth>(-value[0], lanes::stdMax<kWidth>(-value[1], -value[2]));
+        const f64x4 low = lanes::stdMin<kWidth>(value[0], lanes::stdMin<kWidth>(value[1], value[2]));
         spread = lanes::stdMax<kWidth>(spread, high - low);
       }
       // Rounded up to float: compare's bound must not shrink by the output's rounding.

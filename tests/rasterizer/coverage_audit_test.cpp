@@ -407,7 +407,7 @@ TEST(CoverageAudit, HoldsOverlappingSetUpsOfOneTriangleToTheOneThatWon) {
     EXPECT_EQ(wrong.depthTieWide, 1u) << where;
     EXPECT_EQ(wrong.boundWide, 1u) << where;
     EXPECT_EQ(wrong.violations(), 3u) << where;
-    const int x = int(at % 320), y = int(at / 320);
+    const int x = int(at % std::size_t(frame.width())), y = int(at / std::size_t(frame.width()));
     for (const CoverageAudit::Diagnostic* first :
          {&wrong.firstEdgeDistanceShort, &wrong.firstDepthTieWide, &wrong.firstBoundWide}) {
       EXPECT_EQ(first->x, x) << where;
