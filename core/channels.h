@@ -47,6 +47,9 @@ inline constexpr const char* kVersion = "rastercheck.version";
 inline constexpr const char* kEdgeBand = "rastercheck.edgeBand";
 // Relative depth difference within which this path's depth test may order two surfaces wrongly.
 inline constexpr const char* kDepthResolution = "rastercheck.depthResolution";
+// A float frame's pixels whose values its rasterizer computed in double: set-ups whose own
+// error bound says float learns next to nothing there (docs/rasterizer.md).
+inline constexpr const char* kPromotedPixels = "rastercheck.promotedPixels";
 }  // namespace header
 
 }  // namespace rc::channels

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdio>
 #include <type_traits>
 #include <cmath>
@@ -409,7 +410,7 @@ struct Pipeline {
         // The fan's diagonals poly[0]-poly[k] (opposite vertex 2) and poly[k+1]-poly[0]
         // (opposite vertex 1) run inside the polygon, except its first and last edges.
         const unsigned inner = (k > 1 ? 4u : 0u) | (k + 2 < n ? 2u : 0u);
-        block.clipped.push_back({glm::mat<3, 3, Real>(glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary)),
+        block.clipped.push_back({glm::dmat3(poly[0].bary, poly[k].bary, poly[k + 1].bary),
                                  {sub[0], sub[1], sub[2]},
                                  {raster[0], raster[1], raster[2]},
                                  inner});
@@ -581,6 +582,7 @@ kernel::Outputs outputPlanes(Framebuffer& fb, const Mesh& mesh, bool diagnostics
 struct FrameFacts {
   bool culled;      // the frame culled back faces
   double edgeBand;  // pixels (channels::header::kEdgeBand)
+  std::uint64_t promotedPixels;  // a float frame's pixels resolved in double (tile_promote.h)
 };
 
 template <typename Real>
@@ -594,7 +596,9 @@ FrameFacts renderFrame(const Scene& scene, const RasterOptions& options, Frame<R
   t0 = nowNanoseconds();
 
   if (fb.width() != p.width || fb.height() != p.height) fb.recycle(p.width, p.height, {});
-  const kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
+  kernel::Outputs out = outputPlanes(fb, scene.mesh, options.diagnostics);
+  std::atomic<std::uint64_t> promotedPixels{0};
+  if constexpr (sizeof(Real) == 4) out.promotedPixels = &promotedPixels;
   kernel::Input<Real> in{};
   in.coverage = frame.blockCoverage.data();
   in.clipped = frame.blockClipped.data();
@@ -623,7 +627,7 @@ FrameFacts renderFrame(const Scene& scene, const RasterOptions& options, Frame<R
     }
   });
   times.tilesMs = millisecondsSince(t0);
-  return {p.context.cullBackFaces, p.edgeBand()};
+  return {p.context.cullBackFaces, p.edgeBand(), promotedPixels.load()};
 }
 
 void checkSubpixelBits(const RasterOptions& options) {
@@ -705,6 +709,9 @@ void Rasterizer::render(const Scene& scene, Framebuffer& target) {
   char band[32];
   std::snprintf(band, sizeof band, "%.17g", facts.edgeBand);  // exact: compare reads it back
   target.attributes[channels::header::kEdgeBand] = band;
+  if (options_.precision == Precision::kFloat) {
+    target.attributes[channels::header::kPromotedPixels] = std::to_string(facts.promotedPixels);
+  }
   target.attributes[channels::header::kScene] = scene.name;
   target.attributes[channels::header::kCamera] = scene.camera.describe();
 }

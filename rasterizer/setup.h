@@ -66,7 +66,10 @@ static_assert(sizeof(CoverageSetup<float>) == 64, "a float record is one cache l
 
 template <typename Real>
 struct ClippedTriangle {
-  glm::mat<3, 3, Real> map;  // columns: source barycentrics of the sub-vertices
+  // Columns: source barycentrics of the sub-vertices, from the clipper in double. The Real
+  // resolve rounds them to Real where it applies them; a set-up promoted to double
+  // (tile_promote.h) applies them as they are.
+  glm::dmat3 map;
   glm::dvec4 clip[3];
   glm::dvec2 raster[3];
   unsigned innerEdges;       // as for setupTriangle
@@ -85,6 +88,12 @@ struct ShadeSetup {
   float baryBound;           // bound on the barycentrics' error (docs/numerics.md)
   float depthBound;          // bound on depth.z's relative error
 };
+
+// A float set-up whose bound on its barycentrics' or its depth's error exceeds this learns next
+// to nothing in float: the bounds are first order in the error of sum_i l_i / w_i, and there
+// that error is no longer small against the sum, which may even cancel to 0 (an Inf
+// barycentric). The tiles resolve such a set-up's pixels again in double (tile_promote.h).
+inline constexpr float kPromoteAbove = 0.5f;
 
 struct SetupContext {
   int width, height, subpixelBits;

@@ -19,6 +19,7 @@
 #include "rasterizer/kernel_lanes.h"
 #include "rasterizer/tile_coverage.h"
 #include "rasterizer/tile_gather.h"
+#include "rasterizer/tile_promote.h"
 #include "rasterizer/tile_resolve.h"
 
 // See kernel_lanes.h: vectors never cross a call boundary.
@@ -251,10 +252,12 @@ RC_KERNEL_INLINE void resolveChunk(const Input<Real>& in, const Outputs& out, co
 
 // Resolve, a row chunk at a time, each tile row into its staging rows (per thread, reused from
 // tile to tile: allocating and freeing them per tile was about 2% of the samples at 100k
-// triangles), then copied out plane by plane.
+// triangles), then copied out plane by plane. `promoted` (a float tile's, null where none):
+// winners whose lanes are resolved again in double (tile_promote.h).
 template <typename Real, std::size_t kWidth>
 RC_KERNEL_INLINE void resolveTile(const Input<Real>& in, const Outputs& out, const TileJob& job,
-                                  const std::uint32_t* winner, const TileShades<Real>& shades, const float* packs) {
+                                  const std::uint32_t* winner, const TileShades<Real>& shades, const float* packs,
+                                  const PromotedWinners* promoted) {
   constexpr bool kAvx2 = kWidth >= 32;
   const int components = out.attributeComponents;
   const bool diagnostics = out.edgeDistance != nullptr;
@@ -271,6 +274,7 @@ RC_KERNEL_INLINE void resolveTile(const Input<Real>& in, const Outputs& out, con
   // Bit c set: chunk column c of the staging rows holds what a chunk without a winner writes
   // (no triangle, zeros), so a chunk without a winner below it writes nothing again.
   unsigned stagedEmpty = 0;
+  std::uint64_t promotedPixels = 0;
   for (int y = job.y0; y <= job.y1; ++y) {
     for (int x = job.x0; x <= job.x1; x += kLanes) {
       const int lanes = std::min(kLanes, job.x1 - x + 1);
@@ -284,13 +288,18 @@ RC_KERNEL_INLINE void resolveTile(const Input<Real>& in, const Outputs& out, con
       } else {
         stagedEmpty |= column;
       }
-      resolveChunk<Real, kWidth>(in, out, job, shades, packs, w, valid, lanes, x, y, components, diagnostics,
-                                 stage.data() + (x - job.x0));
+      std::uint32_t* at = stage.data() + (x - job.x0);
+      resolveChunk<Real, kWidth>(in, out, job, shades, packs, w, valid, lanes, x, y, components, diagnostics, at);
+      if (promoted) {
+        promotedPixels += promoteChunk<kWidth>(*promoted, out, w, valid, x, y, diagnostics, at, kStride,
+                                               reinterpret_cast<float*>(at + kFixedPlanes * kStride));
+      }
     }
     const std::size_t rowStart = std::size_t(y) * out.width + job.x0;
     const int n = job.x1 - job.x0 + 1;
     streamStagedRow<kAvx2>(planes.data(), kFixedPlanes + components, stage.data(), kStride, rowStart, n);
   }
+  if (promotedPixels != 0 && out.promotedPixels) out.promotedPixels->fetch_add(promotedPixels, std::memory_order_relaxed);
 }
 
 // One tile: coverage and depth test into the visibility buffer, the winners' set-ups (and
@@ -307,7 +316,12 @@ RC_KERNEL_INLINE void renderTile(const Input<Real>& in, const Outputs& out, cons
   }
   const TileShades<Real> shades = shadeWinners<Real, kWidth>(in, job, vis.winner);
   const float* packs = packWinners(in, out, job, shades);
-  resolveTile<Real, kWidth>(in, out, job, vis.winner, shades, packs);
+  const PromotedWinners* promoted = nullptr;
+  if constexpr (sizeof(Real) == 4) {
+    thread_local PromotedWinners winners;
+    if (promoteWinners(in, job, shades.winners, shades.shades, shades.count, winners)) promoted = &winners;
+  }
+  resolveTile<Real, kWidth>(in, out, job, vis.winner, shades, packs, promoted);
   _mm_sfence();  // the non-temporal stores are visible before the tile counts as done
 }
 

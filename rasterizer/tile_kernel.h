@@ -8,6 +8,7 @@
 // without FMA, so all give the same bits (Rasterizer.OutputBitsAreIdenticalOnEveryKernelIsa).
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -48,6 +49,9 @@ struct Outputs {
   };
   std::vector<Attribute> attributes;
   int attributeComponents;  // sum of components
+  // A float frame's pixels resolved again in double (tile_promote.h), counted by the tiles;
+  // null in a double frame.
+  std::atomic<std::uint64_t>* promotedPixels;
 };
 
 template <typename Real>

@@ -28,19 +28,21 @@ struct Resolved {
   f32x8 bary[3], depth, edgeDistance, depthTie;
 };
 
-// The resolve half of a set-up (setupShade), from the inputs its coverage half had.
-template <typename Real>
-inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, ShadeSetup<Real>& s) {
-  const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+// The resolve half of a set-up (setupShade), from the inputs its coverage half had: the set-up
+// at `name` in the frame's precision, or, given a copy of its coverage record in another (Out)
+// and that precision's context, in that one (tile_promote.h). s.clipMap is the set-up's own.
+template <typename Real, typename Out>
+inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, const SetupContext& context,
+                         const CoverageSetup<Out>& c, ShadeSetup<Out>& s) {
   const SetupSource& source = c.source;
   if (source.clipped < 0) {
     const glm::uvec3 tri = in.triangles[source.triangle];
     const glm::dvec4 clip[3] = {in.vertexClip[tri.x], in.vertexClip[tri.y], in.vertexClip[tri.z]};
     const glm::dvec2 raster[3] = {in.vertexRaster[tri.x], in.vertexRaster[tri.y], in.vertexRaster[tri.z]};
-    setupShade(clip, raster, 0u, false, *in.context, c, s);
+    setupShade(clip, raster, 0u, false, context, c, s);
   } else {
     const ClippedTriangle<Real>& t = in.clipped[name >> kBlockShift][source.clipped];
-    setupShade(t.clip, t.raster, t.innerEdges, true, *in.context, c, s);
+    setupShade(t.clip, t.raster, t.innerEdges, true, context, c, s);
   }
   s.triangle = source.triangle;
   s.clipMap = source.clipped;
@@ -78,15 +80,16 @@ inline void shadeSetupsOf(const Input<Real>& in, const std::uint32_t* bins, cons
   };
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t name = bins[winners[i]];
-    const SetupSource& own = in.coverage[name >> kBlockShift][name & kLocalMask].source;
+    const CoverageSetup<Real>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
+    const SetupSource& own = c.source;
     if (own.clipped >= 0) {
-      shadeSetupOf(in, name, shades[i]);
+      shadeSetupOf(in, name, *in.context, c, shades[i]);
       continue;
     }
     shades[i].triangle = own.triangle;
     shades[i].clipMap = -1;
     tris[pending] = in.triangles[own.triangle];
-    coverage[pending] = &in.coverage[name >> kBlockShift][name & kLocalMask];
+    coverage[pending] = &c;
     into[pending] = &shades[i];
     if (++pending == batch::kLanes) flush();
   }
@@ -174,7 +177,7 @@ RC_KERNEL_INLINE void resolveLanes(const Input<Real>& in, const Outputs& out, st
   V b[3] = {recovered.b[0], recovered.b[1], recovered.b[2]};
   const V depth = recovered.depth;
   if (s.clipMap >= 0) {  // sub-triangle -> source triangle, in glm's mat3 * vec3 order
-    const glm::mat<3, 3, Real>& m = in.clipped[name >> kBlockShift][s.clipMap].map;
+    const glm::mat<3, 3, Real> m(in.clipped[name >> kBlockShift][s.clipMap].map);
     const V c0 = m[0][0] * b[0] + m[1][0] * b[1] + m[2][0] * b[2];
     const V c1 = m[0][1] * b[0] + m[1][1] * b[1] + m[2][1] * b[2];
     const V c2 = m[0][2] * b[0] + m[1][2] * b[1] + m[2][2] * b[2];

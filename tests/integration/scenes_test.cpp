@@ -211,6 +211,36 @@ TEST(Gate, ANeedleWhoseAreaIsRoundingDrawsNothing) {
   }
 }
 
+// Found the same way, and left in session 50: needles of `degenerate` from about 48 away at 1
+// and 2 subpixel bits, whose double area is more than its rounding but whose planes (1e13 to
+// 1e14) are beyond float's reach. The float resolve's sum of l_i / w_i cancelled to 0 and wrote
+// Inf barycentrics and NaN depths, with a bound of 3.7e32 saying so. Such a set-up is resolved
+// in double now (rasterizer/tile_promote.h), and the float frame passes.
+TEST(Gate, AFloatSetUpBeyondFloatsReachIsResolvedInDouble) {
+  const struct {
+    const char *size, *eye, *target;
+    int bits;
+  } cameras[] = {
+      {"320x240", "-47.7230453,4.93248072,-14.077698", "-0.218142034,-0.100407719,0.216753278", 1},
+      {"640x480", "48.0216163,1.42445805,13.8526276", "0.263094926,-0.156445919,-0.0053652814", 1},
+      {"640x480", "11.8941558,45.1974869,17.7684055", "0.151702012,-0.292672919,0.0887717483", 2},
+  };
+  for (const auto& camera : cameras) {
+    app::RenderSettings s = settings(Interpolation::kPerspective);
+    s.size = camera.size, s.eye = camera.eye, s.target = camera.target;
+    s.fovYDegrees = 20.0;
+    s.raster.subpixelBits = camera.bits;
+    const Scene scene = app::loadScene("degenerate", s);
+    Thresholds thresholds;
+    thresholds.allowEmpty = true;
+    const app::CheckResult r = app::checkScene(scene, s, thresholds, false);
+    EXPECT_TRUE(r.report.pass) << camera.eye << reasons(r.report);
+    for (const FamilyReport& f : r.report.families) {
+      EXPECT_EQ(f.stats.nanCount + f.stats.infCount, 0u) << camera.eye << " " << f.name;
+    }
+  }
+}
+
 TEST(Gate, AffineFailsTheHardCasesWithPerspective) {
   for (const char* name : {"fans", "edges", "perspective", "grazing", "nearplane", "attributes"}) {
     const app::CheckResult r =

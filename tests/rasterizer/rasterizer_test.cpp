@@ -5,11 +5,13 @@
 #include <cstring>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/channels.h"
 #include "core/clock.h"
 #include "rasterizer/rasterizer.h"
+#include "rasterizer/setup.h"
 #include "scenes/registry.h"
 #include "tests/analytic.h"
 #include "tests/same_bits.h"
@@ -134,6 +136,54 @@ std::map<std::string, std::string> headerButKernel(const Framebuffer& fb) {
   std::map<std::string, std::string> header = fb.attributes;
   header.erase("rastercheck.kernelIsa");
   return header;
+}
+
+// A float set-up whose own error bound gives up (setup.h's kPromoteAbove: slivers' needles,
+// whose planes reach 1e7 and more) is resolved again in double. No pixel of a float frame then
+// carries a bound above that, and a pixel so resolved has the double frame's bits wherever the
+// same triangle won it: the same double set-up and resolve. Its bounds are the double ones,
+// which a float set-up's never equal, and that is how the test finds such pixels; the depth
+// tie alone stays the float key's.
+TEST(Rasterizer, FloatResolvesInDoubleWhatItsOwnBoundGivesUpOn) {
+  std::size_t promoted = 0;
+  for (const char* spec : {"slivers", "perspective"}) {
+    const Scene scene = makeBuiltinScene(spec);
+    const Framebuffer single = rasterize(scene, options(Precision::kFloat, 2));
+    const Framebuffer twice = rasterize(scene, options(Precision::kDouble, 2));
+    const auto& ids = single.find(channels::kTriangleId)->uints;
+    const auto& idsTwice = twice.find(channels::kTriangleId)->uints;
+    const auto bitsOf = [](const Framebuffer& fb, const char* name, std::size_t i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &fb.find(name)->floats[i], sizeof bits);
+      return bits;
+    };
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (ids[i] == channels::kNoTriangle) continue;
+      const bool doubles = ids[i] == idsTwice[i] &&
+                           bitsOf(single, channels::kBaryBound, i) == bitsOf(twice, channels::kBaryBound, i) &&
+                           bitsOf(single, channels::kDepthBound, i) == bitsOf(twice, channels::kDepthBound, i);
+      // Above the limit only where double gives up too (perspective's 1e6 depth ratio: 0.64).
+      const bool within = single.find(channels::kBaryBound)->floats[i] <= kPromoteAbove &&
+                          single.find(channels::kDepthBound)->floats[i] <= kPromoteAbove;
+      ASSERT_TRUE(within || doubles) << spec << " pixel " << i << ": a float bound above the limit";
+      if (!doubles) continue;
+      ++found;
+      for (const Channel& c : single.channels()) {
+        if (c.type != ChannelType::kFloat || c.name == channels::kDepthTie) continue;
+        ASSERT_EQ(bitsOf(single, c.name.c_str(), i), bitsOf(twice, c.name.c_str(), i))
+            << spec << " " << c.name << " pixel " << i;
+      }
+    }
+    // The header counts them; where the float key chose another winner than the double one, a
+    // pixel resolved in double is not found above.
+    const std::size_t counted = std::stoull(single.attributes.at(channels::header::kPromotedPixels));
+    EXPECT_GE(counted, found) << spec;
+    EXPECT_GE(found, counted * 9 / 10) << spec;
+    EXPECT_EQ(twice.attributes.count(channels::header::kPromotedPixels), 0u) << "a double frame promotes nothing";
+    promoted += found;
+  }
+  EXPECT_GT(promoted, 100u);
 }
 
 // The SSE2, AVX2 and AVX-512 kernels run the same IEEE operations lane by lane: the same bits,
