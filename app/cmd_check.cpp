@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <string>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -161,6 +162,8 @@ void printSceneLine(const Scene& scene, const CheckResult& r, int nameWidth, boo
 
 // The scene's row of check --json (docs/report-format.md).
 nlohmann::json checkJsonRow(const Scene& scene, const CheckResult& r, const RenderSettings& settings) {
+  // A float frame's pixels resolved in double (docs/rasterizer.md); null for a double frame.
+  const auto promoted = r.raster.attributes.find(channels::header::kPromotedPixels);
   return {{"scene", scene.name},
           {"triangles", r.triangles},
           {"mode", interpolationName(settings.raster.interpolation)},
@@ -170,6 +173,8 @@ nlohmann::json checkJsonRow(const Scene& scene, const CheckResult& r, const Rend
           {"threads", resolveThreadCount(settings.threads)},
           {"raster_ms", r.rasterMs},
           {"reference_ms", r.referenceMs},
+          {"promoted_pixels", promoted == r.raster.attributes.end() ? nlohmann::json(nullptr)
+                                                                    : nlohmann::json(std::stoull(promoted->second))},
           {"coverage_audit", auditToJson(r.audit)},
           {"report", reportToJson(r.report)}};
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -24,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/html_report.h"
+#include "core/channels.h"
 #include "core/exr_io.h"
 #include "rasterizer/coverage_audit.h"
 #include "scenes/registry.h"
@@ -281,6 +283,28 @@ TEST(Cli, CheckJsonCarriesTheCoverageAuditsOwnFigures) {
     EXPECT_EQ(own.diagnosed, diagnostics ? own.covered : 0u);
     EXPECT_LT(own.edgeBand, own.edgeBandLimit);
   }
+}
+
+// check's JSON carries the header's count of pixels a float frame resolved in double: those of
+// the same frame rendered here (slivers: its needles; cube: none), null for a double frame.
+TEST(Cli, CheckJsonCountsThePixelsAFloatFrameResolvedInDouble) {
+  const rc::testing::TempDir temp;
+  const std::string json = temp.file("r.json");
+  const CliRun r = run("check slivers cube -q --json " + json);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json scenes = nlohmann::json::parse(rc::testing::readFile(json))["scenes"];
+  for (const nlohmann::json& row : scenes) {
+    const rc::Scene scene = rc::makeBuiltinScene(row["scene"].get<std::string>());
+    rc::RasterOptions options;
+    options.threads = 2;
+    const std::string own = rc::rasterize(scene, options).attributes.at(rc::channels::header::kPromotedPixels);
+    EXPECT_EQ(row["promoted_pixels"].get<std::uint64_t>(), std::stoull(own)) << row["scene"];
+  }
+  EXPECT_GT(scenes[0]["promoted_pixels"].get<std::uint64_t>(), 100u);
+  EXPECT_EQ(scenes[1]["promoted_pixels"].get<std::uint64_t>(), 0u);
+  const CliRun twice = run("check slivers -q --precision double --json " + json);
+  ASSERT_EQ(twice.exitCode, 0) << twice.output;
+  EXPECT_TRUE(nlohmann::json::parse(rc::testing::readFile(json))["scenes"][0]["promoted_pixels"].is_null());
 }
 
 TEST(Cli, MissingInputIsExitFour) {
