@@ -109,7 +109,7 @@ struct TileFixture {
   std::vector<float> planes;
   kernel::Outputs out{};
   const CoverageSetup<Real>* coverageBlock[1];
-  const ClippedTriangle<Real>* clippedBlock[1] = {nullptr};
+  const ClippedTriangle* clippedBlock[1] = {nullptr};
   kernel::Input<Real> in{};
 
   TileFixture(int count, double size, bool perspective, bool diagnostics)

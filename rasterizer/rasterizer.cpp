@@ -148,7 +148,7 @@ class SetupList {
 template <typename Real>
 struct SetupBlock {
   SetupList<CoverageSetup<Real>> coverage;
-  std::vector<ClippedTriangle<Real>> clipped;
+  std::vector<ClippedTriangle> clipped;
   std::vector<std::size_t> tileCursor;         // per tile: count, then where this block's list goes
   std::vector<std::uint32_t> tileBox;          // per set-up: tileBoxOf()
   double clippedShift = 0.0;  // the largest rasterShift of the clipped sub-triangles' vertices
@@ -169,7 +169,7 @@ struct Frame {
   // The blocks' coverage slices (SetupList), blockSize records each; unwritten until set up.
   PlaneVector<CoverageSetup<Real>> coverageSlices;
   std::vector<const CoverageSetup<Real>*> blockCoverage;
-  std::vector<const ClippedTriangle<Real>*> blockClipped;
+  std::vector<const ClippedTriangle*> blockClipped;
   std::vector<std::size_t> tileTotal;  // per tile: set-ups binned to it
   std::vector<std::size_t> binStart;  // per tile + 1
   PlaneVector<std::uint32_t> binned;  // set-up names, tile by tile
@@ -481,7 +481,7 @@ struct Pipeline {
       setupTriangleRange(begin, std::min(count, begin + blockSize), block);
       if (options.fillRule != FillRule::kTopLeft) breakFillRule(block);
       block.clippedShift = 0.0;
-      for (const ClippedTriangle<Real>& t : block.clipped) {
+      for (const ClippedTriangle& t : block.clipped) {
         for (int i = 0; i < 3; ++i) block.clippedShift = std::max(block.clippedShift, rasterShift(t.clip[i], t.raster[i]));
       }
       block.tileCursor.assign(tiles, 0);
@@ -654,7 +654,7 @@ void forEachSetup(const Scene& scene, const RasterOptions& options, const SetupV
         const glm::uvec3 tri = scene.mesh.triangles[c.source.triangle];
         for (int k = 0; k < 3; ++k) v.raster[k] = frame.raster[tri[k]], v.clip[k] = frame.clip[tri[k]];
       } else {
-        const ClippedTriangle<Real>& t = block.clipped[std::size_t(c.source.clipped)];
+        const ClippedTriangle& t = block.clipped[std::size_t(c.source.clipped)];
         for (int k = 0; k < 3; ++k) v.raster[k] = t.raster[k], v.clip[k] = t.clip[k];
         v.innerEdges = t.innerEdges;
       }

@@ -64,11 +64,10 @@ struct alignas(sizeof(Real) == 4 ? 64 : 8) CoverageSetup {
 };
 static_assert(sizeof(CoverageSetup<float>) == 64, "a float record is one cache line");
 
-template <typename Real>
+// A clipped sub-triangle, all in double: the same record serves either precision's frame.
 struct ClippedTriangle {
-  // Columns: source barycentrics of the sub-vertices, from the clipper in double. The Real
-  // resolve rounds them to Real where it applies them; a set-up promoted to double
-  // (tile_promote.h) applies them as they are.
+  // Columns: source barycentrics of the sub-vertices, from the clipper. The resolve rounds them
+  // to its Real where it applies them (a set-up promoted to double, tile_promote.h, does not).
   glm::dmat3 map;
   glm::dvec4 clip[3];
   glm::dvec2 raster[3];

@@ -57,7 +57,7 @@ struct Outputs {
 template <typename Real>
 struct Input {
   const CoverageSetup<Real>* const* coverage;       // per block
-  const ClippedTriangle<Real>* const* clipped;      // per block
+  const ClippedTriangle* const* clipped;      // per block
   const glm::uvec3* triangles;                      // the mesh's
   const glm::dvec4* vertexClip;                     // per mesh vertex: setupShade's inputs
   const glm::dvec2* vertexRaster;
@@ -96,12 +96,12 @@ void coveredPixelsOf(const CoverageSetup<double>& s, int bits, const glm::dvec2 
 template <typename Real>
 inline __attribute__((always_inline)) void rasterOfSetup(const CoverageSetup<Real>& c, const glm::uvec3* triangles,
                                                          const glm::dvec2* vertexRaster,
-                                                         const ClippedTriangle<Real>* clipped, glm::dvec2 v[3]) {
+                                                         const ClippedTriangle* clipped, glm::dvec2 v[3]) {
   if (c.source.clipped < 0) {
     const glm::uvec3 tri = triangles[c.source.triangle];
     v[0] = vertexRaster[tri.x], v[1] = vertexRaster[tri.y], v[2] = vertexRaster[tri.z];
   } else {
-    const ClippedTriangle<Real>& t = clipped[c.source.clipped];
+    const ClippedTriangle& t = clipped[c.source.clipped];
     v[0] = t.raster[0], v[1] = t.raster[1], v[2] = t.raster[2];
   }
 }

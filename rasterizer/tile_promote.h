@@ -28,15 +28,17 @@ inline bool promotes(const ShadeSetup<float>& s) {
   return !(s.baryBound <= kPromoteAbove && s.depthBound <= kPromoteAbove);
 }
 
-// A float tile's promoted winners, set up again in double: set-up k is named k (block 0) in
-// `in`, a one-block Input<double> that resolveLanes reads as it reads a double frame's.
+// A float tile's promoted winners, set up again in double, as an Input<double> that
+// resolveLanes reads as it reads a double frame's: promoted winner k is set-up 0 of block k
+// there, its coverage record a double copy of the float one and its block's sub-triangles the
+// float frame's own (ClippedTriangle is the same record in either precision), so its clipMap
+// stays the index it has. k stays below 4096, a tile's pixels: its name k << kBlockShift fits.
 struct PromotedWinners {
   std::vector<std::uint32_t> positions;  // the winners' positions in the tile's bins
   std::vector<CoverageSetup<double>> coverage;
-  std::vector<ClippedTriangle<double>> clipped;
   std::vector<ShadeSetup<double>> shades;
-  const CoverageSetup<double>* coverageBlock[1] = {nullptr};
-  const ClippedTriangle<double>* clippedBlock[1] = {nullptr};
+  std::vector<const CoverageSetup<double>*> coverageBlocks;  // &coverage[k]
+  std::vector<const ClippedTriangle*> clippedBlocks;         // the float frame's, block by block
   SetupContext context{};
   Input<double> in{};
 };
@@ -56,7 +58,7 @@ inline CoverageSetup<double> inDouble(const CoverageSetup<float>& c) {
 // The promoted winners among a float tile's; false when there are none.
 inline bool promoteWinners(const Input<float>& in, const TileJob& job, const std::uint32_t* winners,
                            const ShadeSetup<float>* shades, std::size_t count, PromotedWinners& p) {
-  p.positions.clear(), p.coverage.clear(), p.clipped.clear(), p.shades.clear();
+  p.positions.clear(), p.coverage.clear(), p.shades.clear(), p.coverageBlocks.clear(), p.clippedBlocks.clear();
   for (std::size_t i = 0; i < count; ++i) {
     if (!promotes(shades[i])) continue;
     if (p.positions.empty()) {
@@ -64,23 +66,16 @@ inline bool promoteWinners(const Input<float>& in, const TileJob& job, const std
       p.context.unitRoundoff = 0x1p-53;
     }
     const std::uint32_t name = job.bins[winners[i]];
-    const CoverageSetup<float>& c = in.coverage[name >> kBlockShift][name & kLocalMask];
     p.positions.push_back(winners[i]);
-    p.coverage.push_back(inDouble(c));
-    ShadeSetup<double>& s = p.shades.emplace_back();
-    shadeSetupOf(in, name, p.context, p.coverage.back(), s);
-    if (s.clipMap >= 0) {
-      const ClippedTriangle<float>& t = in.clipped[name >> kBlockShift][s.clipMap];
-      s.clipMap = std::int32_t(p.clipped.size());
-      p.clipped.push_back({t.map, {t.clip[0], t.clip[1], t.clip[2]}, {t.raster[0], t.raster[1], t.raster[2]}, t.innerEdges});
-    }
+    p.coverage.push_back(inDouble(in.coverage[name >> kBlockShift][name & kLocalMask]));
+    p.clippedBlocks.push_back(in.clipped[name >> kBlockShift]);
+    shadeSetupOf(in, name, p.context, p.coverage.back(), p.shades.emplace_back());
   }
   if (p.positions.empty()) return false;
-  p.coverageBlock[0] = p.coverage.data();
-  p.clippedBlock[0] = p.clipped.data();
+  for (const CoverageSetup<double>& c : p.coverage) p.coverageBlocks.push_back(&c);
   // The float key decided the depth test, so the depth tie is still its: the float tieScale.
-  p.in = {p.coverageBlock, p.clippedBlock, in.triangles,   in.vertexClip, in.vertexRaster,
-          &p.context,      in.subpixelBits, in.perspective, false,         double(in.tieScale)};
+  p.in = {p.coverageBlocks.data(), p.clippedBlocks.data(), in.triangles,  in.vertexClip, in.vertexRaster,
+          &p.context,              in.subpixelBits,        in.perspective, false,         double(in.tieScale)};
   return true;
 }
 
@@ -100,7 +95,7 @@ RC_KERNEL_INLINE int promoteChunk(const PromotedWinners& p, const Outputs& out, 
     resolved += __builtin_popcount(laneBits<kAvx2>(mine));
     Resolved r{};
     const ShadeSetup<double>& s = p.shades[k];
-    resolveLanes<true, kWidth>(p.in, out, std::uint32_t(k), s, x, y, r, attributes, stride, mine);
+    resolveLanes<true, kWidth>(p.in, out, std::uint32_t(k) << kBlockShift, s, x, y, r, attributes, stride, mine);
     const auto blend = [&](int plane, const f32x8& value) __attribute__((always_inline)) {
       float* row = reinterpret_cast<float*>(at + std::size_t(plane) * stride);
       store(row, split::select<kWidth>(mine, value, load<f32x8>(row)));

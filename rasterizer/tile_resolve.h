@@ -41,7 +41,7 @@ inline void shadeSetupOf(const Input<Real>& in, std::uint32_t name, const SetupC
     const glm::dvec2 raster[3] = {in.vertexRaster[tri.x], in.vertexRaster[tri.y], in.vertexRaster[tri.z]};
     setupShade(clip, raster, 0u, false, context, c, s);
   } else {
-    const ClippedTriangle<Real>& t = in.clipped[name >> kBlockShift][source.clipped];
+    const ClippedTriangle& t = in.clipped[name >> kBlockShift][source.clipped];
     setupShade(t.clip, t.raster, t.innerEdges, true, context, c, s);
   }
   s.triangle = source.triangle;

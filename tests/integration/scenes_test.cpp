@@ -34,6 +34,30 @@ std::string reasons(const CompareReport& r) {
   return text;
 }
 
+// One camera found by checking through random cameras: the scene `spec` through it, which may
+// see nothing, must pass the gate with no NaN or Inf in any family.
+struct FoundCamera {
+  const char *size, *eye, *target;
+  double fovYDegrees;
+  int subpixelBits;
+};
+
+void expectPassesThrough(const char* spec, const FoundCamera& camera, Precision precision) {
+  app::RenderSettings s = settings(Interpolation::kPerspective, precision);
+  s.size = camera.size, s.eye = camera.eye, s.target = camera.target;
+  s.fovYDegrees = camera.fovYDegrees;
+  s.raster.subpixelBits = camera.subpixelBits;
+  const Scene scene = app::loadScene(spec, s);
+  Thresholds thresholds;
+  thresholds.allowEmpty = true;
+  const app::CheckResult r = app::checkScene(scene, s, thresholds, false);
+  const std::string where = std::string(precisionName(precision)) + " " + camera.eye;
+  EXPECT_TRUE(r.report.pass) << where << reasons(r.report);
+  for (const FamilyReport& f : r.report.families) {
+    EXPECT_EQ(f.stats.nanCount + f.stats.infCount, 0u) << where << " " << f.name;
+  }
+}
+
 class DefaultScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DefaultScene, PassesTheGateInPerspectiveMode) {
@@ -193,22 +217,9 @@ TEST(Gate, PassesTheRightRasterizerThroughSeededRandomCameras) {
 // A set-up whose double area is within its own rounding of 0 is dropped now, as one of area 0
 // always was.
 TEST(Gate, ANeedleWhoseAreaIsRoundingDrawsNothing) {
-  for (Precision precision : {Precision::kFloat, Precision::kDouble}) {
-    app::RenderSettings s = settings(Interpolation::kPerspective, precision);
-    s.size = "320x240";
-    s.eye = "-43.0899024,-2.8039937,-25.2071008";
-    s.target = "-0.164684484,-0.0988354112,-0.284220158";
-    s.fovYDegrees = 90.0;
-    s.raster.subpixelBits = 2;
-    const Scene scene = app::loadScene("degenerate", s);
-    Thresholds thresholds;
-    thresholds.allowEmpty = true;
-    const app::CheckResult r = app::checkScene(scene, s, thresholds, false);
-    EXPECT_TRUE(r.report.pass) << precisionName(precision) << reasons(r.report);
-    for (const FamilyReport& f : r.report.families) {
-      EXPECT_EQ(f.stats.nanCount + f.stats.infCount, 0u) << precisionName(precision) << " " << f.name;
-    }
-  }
+  const FoundCamera camera = {"320x240", "-43.0899024,-2.8039937,-25.2071008",
+                              "-0.164684484,-0.0988354112,-0.284220158", 90.0, 2};
+  for (Precision precision : {Precision::kFloat, Precision::kDouble}) expectPassesThrough("degenerate", camera, precision);
 }
 
 // Found the same way, and left in session 50: needles of `degenerate` from about 48 away at 1
@@ -217,28 +228,12 @@ TEST(Gate, ANeedleWhoseAreaIsRoundingDrawsNothing) {
 // Inf barycentrics and NaN depths, with a bound of 3.7e32 saying so. Such a set-up is resolved
 // in double now (rasterizer/tile_promote.h), and the float frame passes.
 TEST(Gate, AFloatSetUpBeyondFloatsReachIsResolvedInDouble) {
-  const struct {
-    const char *size, *eye, *target;
-    int bits;
-  } cameras[] = {
-      {"320x240", "-47.7230453,4.93248072,-14.077698", "-0.218142034,-0.100407719,0.216753278", 1},
-      {"640x480", "48.0216163,1.42445805,13.8526276", "0.263094926,-0.156445919,-0.0053652814", 1},
-      {"640x480", "11.8941558,45.1974869,17.7684055", "0.151702012,-0.292672919,0.0887717483", 2},
+  const FoundCamera cameras[] = {
+      {"320x240", "-47.7230453,4.93248072,-14.077698", "-0.218142034,-0.100407719,0.216753278", 20.0, 1},
+      {"640x480", "48.0216163,1.42445805,13.8526276", "0.263094926,-0.156445919,-0.0053652814", 20.0, 1},
+      {"640x480", "11.8941558,45.1974869,17.7684055", "0.151702012,-0.292672919,0.0887717483", 20.0, 2},
   };
-  for (const auto& camera : cameras) {
-    app::RenderSettings s = settings(Interpolation::kPerspective);
-    s.size = camera.size, s.eye = camera.eye, s.target = camera.target;
-    s.fovYDegrees = 20.0;
-    s.raster.subpixelBits = camera.bits;
-    const Scene scene = app::loadScene("degenerate", s);
-    Thresholds thresholds;
-    thresholds.allowEmpty = true;
-    const app::CheckResult r = app::checkScene(scene, s, thresholds, false);
-    EXPECT_TRUE(r.report.pass) << camera.eye << reasons(r.report);
-    for (const FamilyReport& f : r.report.families) {
-      EXPECT_EQ(f.stats.nanCount + f.stats.infCount, 0u) << camera.eye << " " << f.name;
-    }
-  }
+  for (const FoundCamera& camera : cameras) expectPassesThrough("degenerate", camera, Precision::kFloat);
 }
 
 TEST(Gate, AffineFailsTheHardCasesWithPerspective) {
