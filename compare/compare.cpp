@@ -34,6 +34,7 @@ const char* explanationName(Explanation e) {
   switch (e) {
     case Explanation::kEdgeBand: return "edge_band";
     case Explanation::kDepthTie: return "depth_tie";
+    case Explanation::kIdEdge: return "id_edge";
     default: return "unexplained";
   }
 }
@@ -388,16 +389,31 @@ FamilyReport measureFamily(const Family& f, const PlaneVector<PixelClass>& class
   return fr;
 }
 
-// Each disagreement explained where the diagnostics allow (docs/numerics.md): within the edge
-// band, or a depth tie (with the other surface, or with a clipping plane), else unexplained;
-// counted into the report with the first unexplained pixel.
+// Whether pixel i lies at an edge of `ids`: one of its eight neighbours holds another id (no
+// triangle being one), or it is on the image's border, beyond which nothing is known.
+bool atIdEdge(const PlaneVector<std::uint32_t>& ids, std::size_t i, int width, int height) {
+  const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
+  if (x == 0 || y == 0 || x == width - 1 || y == height - 1) return true;
+  const std::uint32_t id = ids[i];
+  for (int dy = -1; dy <= 1; ++dy) {
+    const std::uint32_t* row = &ids[std::size_t(y + dy) * std::size_t(width) + std::size_t(x)];
+    if (row[-1] != id || row[0] != id || row[1] != id) return true;
+  }
+  return false;
+}
+
+// Each disagreement explained, counted into the report with the first unexplained pixel. With
+// the diagnostics (report.explained, docs/numerics.md): within the edge band, or a depth tie
+// within the paths' resolutions. Without them (docs/compare.md, "Without the diagnostics"): at
+// an edge of either image's ids, or a depth tie within the depth limit. A depth tie is with
+// the other surface, or with a clipping plane. Else unexplained.
 PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Framebuffer& ref,
                                               const PlaneVector<std::uint32_t>& testIds,
                                               const PlaneVector<std::uint32_t>& refIds,
                                               const PlaneVector<PixelClass>& classes, const Diagnostics& d,
-                                              CompareReport& report) {
+                                              double depthLimit, CompareReport& report) {
   const std::size_t n = classes.size();
-  const int width = test.width();
+  const int width = test.width(), height = test.height();
   PlaneVector<Explanation> explanations(n, Explanation::kUnexplained);
   const float* depthTest = test.find(channels::kDepth)->floats.data();
   const float* depthRef = ref.find(channels::kDepth)->floats.data();
@@ -408,24 +424,26 @@ PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Fra
     if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
     const bool t = c != PixelClass::kReferenceOnly, r = c != PixelClass::kTestOnly;
     Explanation e = Explanation::kUnexplained;
-    if ((t && double(d.edgeTest[i]) <= report.edgeBand) || (r && double(d.edgeRef[i]) <= report.edgeBand)) {
+    double tie = depthLimit;  // how far apart, relative to the larger, two depths still tie
+    if (!report.explained) {
+      if (atIdEdge(testIds, i, width, height) || atIdEdge(refIds, i, width, height)) e = Explanation::kIdEdge;
+    } else if ((t && double(d.edgeTest[i]) <= report.edgeBand) || (r && double(d.edgeRef[i]) <= report.edgeBand)) {
       e = Explanation::kEdgeBand;
     } else {
       // Each path's depth-test resolution at the pixel: its depth.tie there (0 where it drew
-      // nothing), else its header's.
-      const double tie = (d.tieTest ? double(d.tieTest[i]) : d.resolutionTest) + (d.tieRef ? double(d.tieRef[i]) : d.resolutionRef);
-      if (t && r) {
-        // The winner's own resolution is known here; the loser's is taken to be at most as
-        // large again (the factor 2), the other path's is added.
-        const double zt = depthTest[i], zr = depthRef[i];
-        if (std::fabs(zt - zr) <= 2.0 * tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
-      } else {
-        // One side only, off every edge: a surface at the near or the far plane, which one
-        // path keeps and the other clips, tied with that plane within the same tolerance.
-        const double z = t ? depthTest[i] : depthRef[i];
-        for (double clip : clips) {
-          if (std::fabs(z - clip) <= 2.0 * tie * std::fabs(z)) e = Explanation::kDepthTie;
-        }
+      // nothing), else its header's. The winner's own resolution is known here; the loser's
+      // is taken to be at most as large again (the factor 2), the other path's is added.
+      tie = 2.0 * ((d.tieTest ? double(d.tieTest[i]) : d.resolutionTest) + (d.tieRef ? double(d.tieRef[i]) : d.resolutionRef));
+    }
+    if (e == Explanation::kUnexplained && t && r) {
+      const double zt = depthTest[i], zr = depthRef[i];
+      if (std::fabs(zt - zr) <= tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
+    } else if (e == Explanation::kUnexplained) {
+      // One side only, off every edge: a surface at the near or the far plane, which one
+      // path keeps and the other clips, tied with that plane within the same tolerance.
+      const double z = t ? depthTest[i] : depthRef[i];
+      for (double clip : clips) {
+        if (std::fabs(z - clip) <= tie * std::fabs(z)) e = Explanation::kDepthTie;
       }
     }
     explanations[i] = e;
@@ -456,14 +474,14 @@ void gate(CompareReport& report, const Thresholds& thresholds) {
                 f.range > 0.0 ? " of range exceeds " : " exceeds ");
     }
   }
-  if (report.explained) {
-    const std::size_t unexplained = report.explanationCounts[int(Explanation::kUnexplained)];
-    if (unexplained > 0) {
-      report.reasons.push_back(std::to_string(unexplained) +
-                               " disagreements neither in the edge band nor a depth tie, first at " +
-                               formatPixel(report.firstUnexplained));
-    }
-  } else {
+  const std::size_t unexplained = report.explanationCounts[int(Explanation::kUnexplained)];
+  if (unexplained > 0) {
+    report.reasons.push_back(std::to_string(unexplained) +
+                             (report.explained ? " disagreements neither in the edge band nor a depth tie, first at "
+                                               : " disagreements away from every edge of both images' ids and not a depth tie, first at ") +
+                             formatPixel(report.firstUnexplained));
+  }
+  if (!report.explained) {
     addIfOver(report.reasons, "different triangle at ", report.disagreementFraction, thresholds.disagreement,
               " of covered pixels, limit ");
     addIfOver(report.reasons, "one-side-only coverage at ", report.coverageFraction, thresholds.coverage,
@@ -482,7 +500,7 @@ void paintHeatmap(Framebuffer& heatmap, const CompareReport& report, const Thres
   const std::size_t n = classes.size();
   const int width = heatmap.width();
   std::uint32_t* classPlane = heatmap.addUint("class.id");
-  std::uint32_t* explanationPlane = report.explained ? heatmap.addUint("explanation.id") : nullptr;
+  std::uint32_t* explanationPlane = heatmap.addUint("explanation.id");
   float* rgb[3] = {heatmap.addFloat("R"), heatmap.addFloat("G"), heatmap.addFloat("B")};
   const HeatmapQuantity quantity = thresholds.heatmap == HeatmapQuantity::kBoundRatio && !bounded
                                        ? HeatmapQuantity::kError
@@ -499,12 +517,12 @@ void paintHeatmap(Framebuffer& heatmap, const CompareReport& report, const Thres
     for (std::size_t i = first; i < last; ++i) {
       classPlane[i] = std::uint32_t(classes[i]);
       const bool disagree = classes[i] != PixelClass::kBothEmpty && classes[i] != PixelClass::kSameTriangle;
-      if (explanationPlane) explanationPlane[i] = disagree ? std::uint32_t(explanations[i]) : kNothingToExplain;
+      explanationPlane[i] = disagree ? std::uint32_t(explanations[i]) : kNothingToExplain;
       const bool nonFinite =
           std::any_of(nonFiniteOf.begin(), nonFiniteOf.end(), [i](const auto& flags) { return flags[i] != 0; });
       Rgb colour = nonFinite                                      ? kColourNonFinite
                    : classes[i] == PixelClass::kBothEmpty         ? kColourBackground
-                   : disagree && report.explained && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
+                   : disagree && explanations[i] == Explanation::kUnexplained ? kColourUnexplained
                    : classes[i] == PixelClass::kDifferentTriangle ? kColourDifferentTriangle
                    : disagree                                     ? kColourOneSideOnly
                                                                   : heatColour(shown[i], scale);
@@ -587,9 +605,8 @@ CompareReport compareImages(const Framebuffer& test, const std::string& testPath
     const std::size_t fi = std::size_t(index);
     report.families[fi] = measureFamily(families[fi], classes, diagnostics, thresholds, sameTriangle, test.width(), planes[fi]);
   });
-  const PlaneVector<Explanation> explanations = report.explained
-                                                    ? explainDisagreements(test, ref, testIds, refIds, classes, diagnostics, report)
-                                                    : PlaneVector<Explanation>();
+  const PlaneVector<Explanation> explanations =
+      explainDisagreements(test, ref, testIds, refIds, classes, diagnostics, thresholds.depth, report);
   gate(report, thresholds);
   if (heatmap) paintHeatmap(*heatmap, report, thresholds, classes, explanations, nonFiniteOf, bounded, workers);
   return report;

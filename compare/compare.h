@@ -28,8 +28,12 @@ enum class Explanation : std::uint8_t {
   kEdgeBand = 0,     // the centre is within both paths' edge bands of an edge of either triangle
   kDepthTie = 1,     // both hit, and the two depths are within the paths' depth resolutions
   kUnexplained = 2,
+  // Without the diagnostics (docs/compare.md, "Without the diagnostics"): a neighbour of the
+  // pixel, of the eight, holds another id in either image, or the pixel is on the border. A
+  // depth tie is then within the depth limit, and kUnexplained lies inside both images' ids.
+  kIdEdge = 3,
 };
-inline constexpr int kExplanationCount = 3;
+inline constexpr int kExplanationCount = 4;
 // The heatmap's explanation.id where the two images agree (both empty, or the same triangle).
 inline constexpr std::uint32_t kNothingToExplain = 0xFFFFFFFFu;
 const char* explanationName(Explanation e);
@@ -51,6 +55,8 @@ struct Thresholds {
   double bary = 2e-4;          // max |b_test - b_ref| over components, same-triangle pixels
   double depth = 2e-5;         // max |d_test - d_ref| / |d_ref|
   double attribute = 1e-4;     // max |a_test - a_ref| / (range of a in the reference)
+  // Without the diagnostics, each disagreement must also lie at an edge of either image's ids
+  // or be a depth tie within `depth` (Explanation::kIdEdge, docs/compare.md).
   double disagreement = 5e-3;  // different-triangle pixels / pixels covered by either image
   double coverage = 1e-3;      // one-side-only pixels / pixels covered by either image
   // A pair in which neither image covers a pixel compares nothing: it fails the gate (a camera
@@ -125,6 +131,7 @@ struct CompareReport {
   double disagreementFraction = 0.0;
   double coverageFraction = 0.0;
   bool explained = false;  // disagreements classified (both images carry edge.dist and bands)
+  // Without: classified by what the ids and depths show (Explanation::kIdEdge).
   std::size_t explanationCounts[kExplanationCount] = {};
   double edgeBand = 0.0;  // pixels: the sum of the two paths' bands
   WorstPixel firstUnexplained;

@@ -78,15 +78,16 @@ nlohmann::json reportToJson(const CompareReport& r) {
   j["pixels"] = pixels;
   j["disagreement_fraction"] = number(r.disagreementFraction);
   j["coverage_fraction"] = number(r.coverageFraction);
-  if (r.explained) {
-    nlohmann::json e;
-    for (int c = 0; c < kExplanationCount; ++c) e[explanationName(Explanation(c))] = r.explanationCounts[c];
-    e["edge_band_pixels"] = number(r.edgeBand);
-    if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
-    j["disagreements"] = e;
-  } else {
-    j["disagreements"] = nullptr;
+  // Why each disagreement is allowed: by the diagnostics (edge band, depth tie within the
+  // resolutions) or, without them, by the ids and depths (id edge, depth tie within the limit).
+  nlohmann::json e = {{"by", r.explained ? "diagnostics" : "ids"}};
+  for (int c = 0; c < kExplanationCount; ++c) {
+    if (Explanation(c) == (r.explained ? Explanation::kIdEdge : Explanation::kEdgeBand)) continue;
+    e[explanationName(Explanation(c))] = r.explanationCounts[c];
   }
+  if (r.explained) e["edge_band_pixels"] = number(r.edgeBand);
+  if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
+  j["disagreements"] = e;
   j["thresholds"] = {{"bary", r.thresholds.bary},
                      {"depth", r.thresholds.depth},
                      {"attribute", r.thresholds.attribute},
@@ -143,14 +144,13 @@ std::string reportToTable(const CompareReport& r) {
                 cc[int(PixelClass::kDifferentTriangle)], formatNumber(r.disagreementFraction).c_str(),
                 cc[int(PixelClass::kTestOnly)], cc[int(PixelClass::kReferenceOnly)]);
   out << line;
-  if (r.explained) {
-    std::snprintf(line, sizeof line,
-                  "disagreements: %zu in the edge band (%s px), %zu depth ties, %zu unexplained\n",
-                  r.explanationCounts[int(Explanation::kEdgeBand)], formatNumber(r.edgeBand).c_str(),
-                  r.explanationCounts[int(Explanation::kDepthTie)],
-                  r.explanationCounts[int(Explanation::kUnexplained)]);
-    out << line;
-  }
+  // Why the disagreements are allowed: by the diagnostics, else by the ids and depths.
+  const std::string edges = r.explained ? "in the edge band (" + formatNumber(r.edgeBand) + " px)" : "at an edge of the ids";
+  std::snprintf(line, sizeof line, "disagreements: %zu %s, %zu depth ties%s, %zu unexplained\n",
+                r.explanationCounts[int(r.explained ? Explanation::kEdgeBand : Explanation::kIdEdge)], edges.c_str(),
+                r.explanationCounts[int(Explanation::kDepthTie)], r.explained ? "" : " (within the depth limit)",
+                r.explanationCounts[int(Explanation::kUnexplained)]);
+  out << line;
   std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %5s %9s %9s  %s\n", "family", "max",
                 "mean", "p99.9", "max ulps", "max/bound", "n+i", "limit", "p99.9/bnd", "largest error at: test / ref");
   out << line;

@@ -590,7 +590,8 @@ TEST(Report, JsonCarriesEachFigureUnderItsName) {
   EXPECT_EQ(j["disagreement_fraction"], 0.125);
   EXPECT_EQ(j["coverage_fraction"], 0.0625);
   EXPECT_EQ(j["disagreements"],
-            (nlohmann::json{{"edge_band", 11}, {"depth_tie", 13}, {"unexplained", 17}, {"edge_band_pixels", 0.0055}}));
+            (nlohmann::json{{"by", "diagnostics"}, {"edge_band", 11}, {"depth_tie", 13}, {"unexplained", 17},
+                            {"edge_band_pixels", 0.0055}}));
   EXPECT_EQ(j["families"]["bary"],
             (nlohmann::json{{"unit", "absolute"},
                             {"count", 24},
@@ -873,7 +874,8 @@ TEST(CompareHeatmap, ExplanationsMarkOnlyDisagreementsAndTheColoursShowTheChosen
   compareImages(image(), "t.exr", image(), "r.exr", t, &heatmap);
   EXPECT_EQ(heatmap.attributes.at("rastercheck.heatmapQuantity"), "error");
   EXPECT_EQ(heatmap.find("ratio.bary"), nullptr);
-  EXPECT_EQ(heatmap.find("explanation.id"), nullptr);  // nothing explains without the diagnostics
+  const auto& explanation = heatmap.find("explanation.id")->uints;  // without them, what the ids show
+  EXPECT_TRUE(std::all_of(explanation.begin(), explanation.end(), [](std::uint32_t e) { return e == kNothingToExplain; }));
 }
 
 // A path that drew nothing at a pixel writes 0 there for its edge distance: that is no
@@ -969,6 +971,73 @@ TEST(CompareLimits, WithoutDiagnosticsEachFixedLimitPassesAtItsValueAndFailsBeyo
       EXPECT_FALSE(r.explained);
       EXPECT_EQ(r.pass, !beyond) << c.what << (beyond ? " beyond" : " at") << " its limit: " << reasons(r);
       EXPECT_EQ(r.reasons.size(), beyond ? 1u : 0u) << c.what << ": " << reasons(r);
+    }
+  }
+}
+
+// Without diagnostics, a disagreement must also lie at an edge of either image's ids (a
+// neighbour of the eight with another id, or the image's border) or be a depth tie within the
+// depth limit: a right renderer's pixel of another triangle lies within snapping's reach of an
+// edge, so next to a pixel of another id in one of the images. A 3x3 block of another triangle
+// (the fractions let through) has 8 pixels at such an edge and 1 inside, which fails unless its
+// depth ties within the limit (the same steps as the fixed limits' test above); a block
+// against the border has no pixel inside.
+TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInDepth) {
+  Thresholds limits;
+  limits.depth = 0x1p-12;
+  limits.disagreement = limits.coverage = 1.0;
+  const auto block = [](int x0, std::uint32_t id, float depth) {
+    Framebuffer test = image();
+    for (int y = 3; y < 6; ++y) {
+      for (int x = std::max(x0, 0); x < x0 + 3; ++x) {
+        idAt(test, x, y) = id;
+        at(test, channels::kDepth, x, y) = depth;
+      }
+    }
+    return test;
+  };
+  struct Case {
+    const char* what;
+    Framebuffer test;
+    std::size_t disagreeing, inside, ties;
+  };
+  const Case cases[] = {
+      {"another triangle 1 deeper", block(3, 2, 5.0f), 9, 1, 0},
+      {"another triangle at the depth limit", block(3, 2, 4.0f + 0x1p-10f), 9, 0, 1},
+      {"another triangle just beyond it", block(3, 2, 4.0f + 0x1p-10f + 0x1p-21f), 9, 1, 0},
+      {"nothing drawn", block(3, channels::kNoTriangle, 0.0f), 9, 1, 0},
+      {"another triangle against the border, two columns of it", block(-1, 2, 5.0f), 6, 0, 0},
+  };
+  for (const Case& c : cases) {
+    Framebuffer heatmap;
+    const CompareReport r = compareImages(c.test, "t.exr", image(), "r.exr", limits, &heatmap);
+    const std::size_t disagreeing = c.disagreeing;
+    EXPECT_FALSE(r.explained) << c.what;
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kIdEdge)], disagreeing - c.inside - c.ties) << c.what;
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], c.ties) << c.what;
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kUnexplained)], c.inside) << c.what;
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kEdgeBand)], 0u) << c.what;
+    EXPECT_EQ(r.pass, c.inside == 0) << c.what << ": " << reasons(r);
+    const std::uint32_t centre = heatmap.find("explanation.id")->uints[std::size_t(4) * kW + 4];
+    const std::uint32_t corner = heatmap.find("explanation.id")->uints[std::size_t(3) * kW + 3];
+    if (disagreeing == 9) {
+      EXPECT_EQ(centre, std::uint32_t(c.inside ? Explanation::kUnexplained : Explanation::kDepthTie)) << c.what;
+      EXPECT_EQ(corner, std::uint32_t(Explanation::kIdEdge)) << c.what;
+      EXPECT_EQ(heatmap.find("R")->floats[std::size_t(4) * kW + 4], c.inside ? linearFromSrgb(kColourUnexplained)[0] : 0.0f)
+          << c.what;
+    }
+    if (c.inside) {
+      EXPECT_EQ(r.reasons, std::vector<std::string>{"1 disagreements away from every edge of both images' ids and not a "
+                                                    "depth tie, first at (4,4)"})
+          << c.what;
+      EXPECT_EQ(reportToJson(r)["disagreements"],
+                (nlohmann::json{{"by", "ids"}, {"depth_tie", 0}, {"unexplained", 1}, {"id_edge", 8},
+                                {"first_unexplained", {{"x", 4}, {"y", 4}}}}))
+          << c.what;
+      EXPECT_NE(reportToTable(r).find("disagreements: 8 at an edge of the ids, 0 depth ties (within the depth limit), "
+                                      "1 unexplained\n"),
+                std::string::npos)
+          << reportToTable(r);
     }
   }
 }
