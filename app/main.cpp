@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     return int(e.code());
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "rastercheck: error: out of memory\n");
-    return int(rc::ExitCode::kInternal);
+    return int(rc::ExitCode::kIo);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rastercheck: internal error: %s\n", e.what());
     return int(rc::ExitCode::kInternal);

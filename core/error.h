@@ -15,7 +15,7 @@ enum class ExitCode : int {
   kGateFailed = 1,  // check/compare ran and the accuracy gate failed
   kUsage = 2,       // bad command line: unknown option, missing or out-of-range value
   kBadInput = 3,    // a scene, mesh or image is invalid, or two images are incompatible
-  kIo = 4,          // a file could not be read or written (missing, permissions, disk full)
+  kIo = 4,          // a file could not be read or written (missing, permissions, disk full), or memory ran out
   kInternal = 5,    // a library (Embree, OpenEXR) failed in a way no input explains: a bug
 };
 
@@ -57,5 +57,9 @@ inline Error ioError(const std::string& where, const std::string& what) {
   return Error(ExitCode::kIo, where + ": " + what);
 }
 inline Error internalError(const std::string& what) { return Error(ExitCode::kInternal, what); }
+// Memory ran out: not the input's fault nor a bug, a resource like a full disk (exit 4).
+inline Error outOfMemory(const std::string& where, const std::string& what) {
+  return Error(ExitCode::kIo, where + ": out of memory " + what);
+}
 
 }  // namespace rc

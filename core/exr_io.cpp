@@ -16,6 +16,7 @@
 #include <cstring>
 #include <iterator>
 #include <map>
+#include <new>
 #include <filesystem>
 #include <fstream>
 
@@ -198,6 +199,9 @@ void writeExr(const Framebuffer& fb, const std::string& path, ExrCompression com
     Imf::OutputFile file(out.tempPath().c_str(), header);
     file.setFrameBuffer(slices);
     file.writePixels(fb.height());
+  } catch (const std::bad_alloc&) {
+    throw outOfMemory(path, "writing " + std::to_string(fb.width()) + "x" + std::to_string(fb.height()) + " pixels in " +
+                                std::to_string(fb.channels().size()) + " channels");
   } catch (const std::exception& e) {
     throw ioError(path, std::string("cannot write EXR: ") + e.what());
   }
@@ -207,6 +211,7 @@ void writeExr(const Framebuffer& fb, const std::string& path, ExrCompression com
 Framebuffer readExr(const std::string& path) {
   setLimits();
   checkOpenable(path);
+  std::string pixels = "its header";  // what was being read, for running out of memory
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
@@ -225,6 +230,8 @@ Framebuffer readExr(const std::string& path) {
       throw badInput(path + ": dataWindow", std::to_string(width) + "x" + std::to_string(height) + " with " +
                                                 std::to_string(channelCount) + " channels exceeds the 4 GiB image limit");
     }
+    pixels = std::to_string(width) + "x" + std::to_string(height) + " pixels in " + std::to_string(channelCount) +
+             " channels (" + std::to_string(raw) + " bytes)";
     std::error_code sizeError;
     const unsigned long long fileSize = std::filesystem::file_size(path, sizeError);
     if (!sizeError && fileSize * kMaxCompressionRatio < raw) {
@@ -275,6 +282,8 @@ Framebuffer readExr(const std::string& path) {
     return fb;
   } catch (const Error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw outOfMemory(path, "reading " + pixels);
   } catch (const std::exception& e) {
     throw badInput(path, std::string("invalid EXR: ") + e.what());
   }

@@ -454,6 +454,42 @@ TEST(BadInput, AFullDiskLeavesNothingBehind) {
   }
 }
 
+// An image too large for the memory there is: the message names it and what it holds, and the
+// exit code is 4, a resource like a full disk (until session 52: "invalid EXR: std::bad_alloc",
+// exit 3, for a valid file). The image is 8000x8000 pixels in 6 FLOAT channels (1.5 GB) of one
+// row written again and again, 24 MB with RLE; the command runs in 1 GB of address space
+// (ulimit -v), in which it compares two small images.
+TEST(BadInput, AnImageTooLargeForTheMemoryIsNamed) {
+  TempDir dir;
+  const std::string small = dir.file("small.exr"), big = dir.file("big.exr");
+  ASSERT_EQ(rc::testing::runCommand(rc::testing::rastercheckExe() + " render cube -o " + small).exitCode, 0);
+  const std::string limited = "sh -c 'ulimit -v 1000000; " + rc::testing::rastercheckExe() + " compare ";
+  const Outcome fits = rc::testing::runCommand(limited + small + " " + small + "'");
+  if (fits.exitCode != 0) {
+    GTEST_SKIP() << "two small images do not compare in 1 GB of address space here (a sanitizer reserves more): "
+                 << fits.output;
+  }
+  constexpr int kSide = 8000;
+  Imf::Header header(kSide, kSide);
+  header.compression() = Imf::RLE_COMPRESSION;
+  const std::vector<float> row(kSide, 0.25f);
+  Imf::FrameBuffer slices;
+  for (const char* name : {"bary.b0", "bary.b1", "bary.b2", "depth.z", "edge.dist", "bound.bary"}) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    slices.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(row.data())), 4, 0));
+  }
+  {
+    Imf::OutputFile file(big.c_str(), header);
+    file.setFrameBuffer(slices);
+    file.writePixels(kSide);
+  }
+  const Outcome r = rc::testing::runCommand(limited + big + " " + small + "'");
+  EXPECT_EQ(r.exitCode, 4) << r.output;
+  EXPECT_NE(r.output.find(big + ": out of memory reading 8000x8000 pixels in 6 channels (1536000000 bytes)"),
+            std::string::npos)
+      << r.output;
+}
+
 // A file its owner made read-only stays as it is: outputs are written by renaming a temporary
 // over the target, which replaces the file whatever its mode, so the write is refused first.
 // A folder the user may not write is refused before the work. Root may write anything: as
