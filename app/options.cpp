@@ -185,10 +185,12 @@ void addThresholdOptions(CLI::App* command, Thresholds& t) {
                           "gate without bound channels: max attribute error, as a fraction of its range; LIMIT for "
                           "every attribute, NAME=LIMIT for one (e.g. 1e-4,color=4e-3); default 0.0001");
   command->add_option("--max-disagreement", t.disagreement,
-                      "gate without edge.dist channels: max fraction of covered pixels where the triangle differs")
+                      "gate without edge.dist channels: max fraction of covered pixels where the triangle differs, "
+                      "depth ties left out")
       ->check(kFiniteNonNegative)->capture_default_str();
   command->add_option("--max-coverage", t.coverage,
-                      "gate without edge.dist channels: max fraction of covered pixels covered by one image only")
+                      "gate without edge.dist channels: max fraction of covered pixels covered by one image only, "
+                      "clip ties left out")
       ->check(kFiniteNonNegative)->capture_default_str();
   // Warning limits: the same values in the same units, whatever gates them; never fail.
   const std::string warns = "warn (exit 0 unless --fail-on-warnings) when ";

@@ -419,22 +419,23 @@ PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Fra
   const float* depthRef = ref.find(channels::kDepth)->floats.data();
   std::vector<double> clips = clipDepths(test);
   for (double depth : clipDepths(ref)) clips.push_back(depth);
+  std::size_t tied[2] = {};  // depth ties: different triangle, one side only
   for (std::size_t i = 0; i < n; ++i) {
     const PixelClass c = classes[i];
     if (c == PixelClass::kBothEmpty || c == PixelClass::kSameTriangle) continue;
     const bool t = c != PixelClass::kReferenceOnly, r = c != PixelClass::kTestOnly;
     Explanation e = Explanation::kUnexplained;
     double tie = depthLimit;  // how far apart, relative to the larger, two depths still tie
-    if (!report.explained) {
-      if (atIdEdge(testIds, i, width, height) || atIdEdge(refIds, i, width, height)) e = Explanation::kIdEdge;
-    } else if ((t && double(d.edgeTest[i]) <= report.edgeBand) || (r && double(d.edgeRef[i]) <= report.edgeBand)) {
+    if (report.explained && ((t && double(d.edgeTest[i]) <= report.edgeBand) || (r && double(d.edgeRef[i]) <= report.edgeBand))) {
       e = Explanation::kEdgeBand;
-    } else {
+    } else if (report.explained) {
       // Each path's depth-test resolution at the pixel: its depth.tie there (0 where it drew
       // nothing), else its header's. The winner's own resolution is known here; the loser's
       // is taken to be at most as large again (the factor 2), the other path's is added.
       tie = 2.0 * ((d.tieTest ? double(d.tieTest[i]) : d.resolutionTest) + (d.tieRef ? double(d.tieRef[i]) : d.resolutionRef));
     }
+    // Without the diagnostics a depth tie comes before the ids' edges: either answer is right
+    // there, and the fractions leave it out.
     if (e == Explanation::kUnexplained && t && r) {
       const double zt = depthTest[i], zr = depthRef[i];
       if (std::fabs(zt - zr) <= tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
@@ -446,12 +447,21 @@ PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Fra
         if (std::fabs(z - clip) <= tie * std::fabs(z)) e = Explanation::kDepthTie;
       }
     }
+    if (e == Explanation::kUnexplained && !report.explained &&
+        (atIdEdge(testIds, i, width, height) || atIdEdge(refIds, i, width, height))) {
+      e = Explanation::kIdEdge;
+    }
+    if (e == Explanation::kDepthTie) ++tied[c == PixelClass::kDifferentTriangle ? 0 : 1];
     explanations[i] = e;
     ++report.explanationCounts[int(e)];
     if (e == Explanation::kUnexplained && report.firstUnexplained.x < 0) {
       report.firstUnexplained = {int(i % width), int(i / width), double(testIds[i]), double(refIds[i])};
     }
   }
+  const double covered = double(std::max<std::size_t>(report.coveredEither, 1));
+  report.untiedDisagreementFraction = double(report.classCounts[int(PixelClass::kDifferentTriangle)] - tied[0]) / covered;
+  report.untiedCoverageFraction = double(report.classCounts[int(PixelClass::kTestOnly)] +
+                                         report.classCounts[int(PixelClass::kReferenceOnly)] - tied[1]) / covered;
   return explanations;
 }
 
@@ -482,10 +492,10 @@ void gate(CompareReport& report, const Thresholds& thresholds) {
                              formatPixel(report.firstUnexplained));
   }
   if (!report.explained) {
-    addIfOver(report.reasons, "different triangle at ", report.disagreementFraction, thresholds.disagreement,
-              " of covered pixels, limit ");
-    addIfOver(report.reasons, "one-side-only coverage at ", report.coverageFraction, thresholds.coverage,
-              " of covered pixels, limit ");
+    addIfOver(report.reasons, "different triangle (depth ties left out) at ", report.untiedDisagreementFraction,
+              thresholds.disagreement, " of covered pixels, limit ");
+    addIfOver(report.reasons, "one-side-only coverage (clip ties left out) at ", report.untiedCoverageFraction,
+              thresholds.coverage, " of covered pixels, limit ");
   }
   report.pass = report.reasons.empty();
   report.warnings = warningsOf(report, thresholds.warn);

@@ -57,8 +57,8 @@ struct Thresholds {
   double attribute = 1e-4;     // max |a_test - a_ref| / (range of a in the reference)
   // Without the diagnostics, each disagreement must also lie at an edge of either image's ids
   // or be a depth tie within `depth` (Explanation::kIdEdge, docs/compare.md).
-  double disagreement = 5e-3;  // different-triangle pixels / pixels covered by either image
-  double coverage = 1e-3;      // one-side-only pixels / pixels covered by either image
+  double disagreement = 5e-3;  // different-triangle pixels not tied in depth / pixels covered by either image
+  double coverage = 1e-3;      // one-side-only pixels not tied with a clipping plane / the same
   // A pair in which neither image covers a pixel compares nothing: it fails the gate (a camera
   // that misses the mesh) unless this says it may pass.
   bool allowEmpty = false;
@@ -130,6 +130,10 @@ struct CompareReport {
   std::size_t coveredEither = 0;
   double disagreementFraction = 0.0;
   double coverageFraction = 0.0;
+  // The fractions the fixed limits gate without the diagnostics: those above without the
+  // pixels tied in depth (with the other surface, or a clipping plane), where either is right.
+  double untiedDisagreementFraction = 0.0;
+  double untiedCoverageFraction = 0.0;
   bool explained = false;  // disagreements classified (both images carry edge.dist and bands)
   // Without: classified by what the ids and depths show (Explanation::kIdEdge).
   std::size_t explanationCounts[kExplanationCount] = {};

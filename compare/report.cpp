@@ -85,7 +85,12 @@ nlohmann::json reportToJson(const CompareReport& r) {
     if (Explanation(c) == (r.explained ? Explanation::kIdEdge : Explanation::kEdgeBand)) continue;
     e[explanationName(Explanation(c))] = r.explanationCounts[c];
   }
-  if (r.explained) e["edge_band_pixels"] = number(r.edgeBand);
+  if (r.explained) {
+    e["edge_band_pixels"] = number(r.edgeBand);
+  } else {
+    e["untied_disagreement_fraction"] = number(r.untiedDisagreementFraction);
+    e["untied_coverage_fraction"] = number(r.untiedCoverageFraction);
+  }
   if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
   j["disagreements"] = e;
   j["thresholds"] = {{"bary", r.thresholds.bary},

@@ -956,7 +956,10 @@ TEST(CompareLimits, WithoutDiagnosticsEachFixedLimitPassesAtItsValueAndFailsBeyo
        }},
       {"different triangle",
        [](Framebuffer& t, bool beyond) {
-         for (int x = 0; x < (beyond ? 3 : 2); ++x) idAt(t, x, 5) = 2;
+         for (int x = 0; x < (beyond ? 3 : 2); ++x) {
+           idAt(t, x, 5) = 2;
+           at(t, channels::kDepth, x, 5) = 5.0f;  // 1 deeper: no tie (the depth limit is 2^-12 here)
+         }
        }},
       {"one side only",
        [](Framebuffer& t, bool beyond) {
@@ -981,7 +984,8 @@ TEST(CompareLimits, WithoutDiagnosticsEachFixedLimitPassesAtItsValueAndFailsBeyo
 // edge, so next to a pixel of another id in one of the images. A 3x3 block of another triangle
 // (the fractions let through) has 8 pixels at such an edge and 1 inside, which fails unless its
 // depth ties within the limit (the same steps as the fixed limits' test above); a block
-// against the border has no pixel inside.
+// against the border has no pixel inside. Depth ties, where either answer is right, are left
+// out of the fractions the fixed limits gate.
 TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInDepth) {
   Thresholds limits;
   limits.depth = 0x1p-12;
@@ -1003,7 +1007,7 @@ TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInD
   };
   const Case cases[] = {
       {"another triangle 1 deeper", block(3, 2, 5.0f), 9, 1, 0},
-      {"another triangle at the depth limit", block(3, 2, 4.0f + 0x1p-10f), 9, 0, 1},
+      {"another triangle at the depth limit", block(3, 2, 4.0f + 0x1p-10f), 9, 0, 9},
       {"another triangle just beyond it", block(3, 2, 4.0f + 0x1p-10f + 0x1p-21f), 9, 1, 0},
       {"nothing drawn", block(3, channels::kNoTriangle, 0.0f), 9, 1, 0},
       {"another triangle against the border, two columns of it", block(-1, 2, 5.0f), 6, 0, 0},
@@ -1022,7 +1026,7 @@ TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInD
     const std::uint32_t corner = heatmap.find("explanation.id")->uints[std::size_t(3) * kW + 3];
     if (disagreeing == 9) {
       EXPECT_EQ(centre, std::uint32_t(c.inside ? Explanation::kUnexplained : Explanation::kDepthTie)) << c.what;
-      EXPECT_EQ(corner, std::uint32_t(Explanation::kIdEdge)) << c.what;
+      EXPECT_EQ(corner, std::uint32_t(c.ties ? Explanation::kDepthTie : Explanation::kIdEdge)) << c.what;
       EXPECT_EQ(heatmap.find("R")->floats[std::size_t(4) * kW + 4], c.inside ? linearFromSrgb(kColourUnexplained)[0] : 0.0f)
           << c.what;
     }
@@ -1030,9 +1034,15 @@ TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInD
       EXPECT_EQ(r.reasons, std::vector<std::string>{"1 disagreements away from every edge of both images' ids and not a "
                                                     "depth tie, first at (4,4)"})
           << c.what;
+      const bool oneSide = r.classCounts[int(PixelClass::kReferenceOnly)] > 0;
       EXPECT_EQ(reportToJson(r)["disagreements"],
-                (nlohmann::json{{"by", "ids"}, {"depth_tie", 0}, {"unexplained", 1}, {"id_edge", 8},
-                                {"first_unexplained", {{"x", 4}, {"y", 4}}}}))
+                (nlohmann::json{{"by", "ids"},
+                                {"depth_tie", 0},
+                                {"unexplained", 1},
+                                {"id_edge", 8},
+                                {"first_unexplained", {{"x", 4}, {"y", 4}}},
+                                {"untied_disagreement_fraction", oneSide ? 0.0 : 0.09},
+                                {"untied_coverage_fraction", oneSide ? 0.09 : 0.0}}))
           << c.what;
       EXPECT_NE(reportToTable(r).find("disagreements: 8 at an edge of the ids, 0 depth ties (within the depth limit), "
                                       "1 unexplained\n"),
@@ -1040,6 +1050,15 @@ TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInD
           << reportToTable(r);
     }
   }
+  limits.disagreement = 0.0;
+  const CompareReport tied = compareImages(block(3, 2, 4.0f + 0x1p-10f), "t.exr", image(), "r.exr", limits, nullptr);
+  EXPECT_TRUE(tied.pass) << reasons(tied);
+  EXPECT_EQ(reportToJson(tied)["disagreement_fraction"], 0.09);
+  EXPECT_EQ(reportToJson(tied)["disagreements"]["untied_disagreement_fraction"], 0.0);
+  const CompareReport deeper = compareImages(block(3, 2, 5.0f), "t.exr", image(), "r.exr", limits, nullptr);
+  EXPECT_NE(reasons(deeper).find("different triangle (depth ties left out) at 0.09 of covered pixels, limit 0;"),
+            std::string::npos)
+      << reasons(deeper);
 }
 
 TEST(Percentile, UsesNearestRank) {
