@@ -102,11 +102,7 @@ void sceneSection(std::ostringstream& html, const ReportScene& s) {
        << formatNumber(r.coverageFraction)
        << (r.explained ? std::string() : " (limit " + formatNumber(r.thresholds.coverage) + ")")
        << "</td></tr>\n</table>\n";
-  html << "<p>Disagreements: " << r.explanationCounts[int(r.explained ? Explanation::kEdgeBand : Explanation::kIdEdge)]
-       << (r.explained ? " in the edge band (" + formatNumber(r.edgeBand) + " px), " : std::string(" at an edge of the ids, "))
-       << r.explanationCounts[int(Explanation::kDepthTie)]
-       << (r.explained ? " depth ties, " : " depth ties (within the depth limit), ")
-       << r.explanationCounts[int(Explanation::kUnexplained)] << " unexplained (the gate allows none).</p>\n";
+  html << "<p>Disagreements: " << disagreementCounts(r) << " (the gate allows none).</p>\n";
   html << "<table>\n<tr><th>family</th><th>max</th><th>mean</th><th>rms</th><th>p50</th><th>p99</th><th>p99.9</th>"
        << "<th>NaN+Inf</th><th>gated value</th><th>limit</th><th>largest error at: test / reference</th></tr>\n";
   for (const FamilyReport& f : r.families) {

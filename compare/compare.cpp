@@ -253,6 +253,16 @@ double attributeRange(const Family& f, const PlaneVector<PixelClass>& classes) {
   return hi > lo ? hi - lo : 0.0;
 }
 
+// The pixels one image alone covers.
+std::size_t oneSideOnly(const CompareReport& r) {
+  return r.classCounts[int(PixelClass::kTestOnly)] + r.classCounts[int(PixelClass::kReferenceOnly)];
+}
+
+// `count` pixels as a fraction of those either image covers (0 when none is).
+double ofCovered(const CompareReport& r, std::size_t count) {
+  return double(count) / double(std::max<std::size_t>(r.coveredEither, 1));
+}
+
 // Each pixel's class, by the triangle each image has there, counted into the report with the
 // fractions of the covered pixels that disagree and that one side alone covers.
 PlaneVector<PixelClass> classifyPixels(const PlaneVector<std::uint32_t>& testIds, const PlaneVector<std::uint32_t>& refIds,
@@ -270,10 +280,8 @@ PlaneVector<PixelClass> classifyPixels(const PlaneVector<std::uint32_t>& testIds
     ++report.classCounts[int(classes[i])];
   }
   report.coveredEither = n - report.classCounts[int(PixelClass::kBothEmpty)];
-  const double covered = double(std::max<std::size_t>(report.coveredEither, 1));
-  report.disagreementFraction = double(report.classCounts[int(PixelClass::kDifferentTriangle)]) / covered;
-  report.coverageFraction = double(report.classCounts[int(PixelClass::kTestOnly)] +
-                                    report.classCounts[int(PixelClass::kReferenceOnly)]) / covered;
+  report.disagreementFraction = ofCovered(report, report.classCounts[int(PixelClass::kDifferentTriangle)]);
+  report.coverageFraction = ofCovered(report, oneSideOnly(report));
   return classes;
 }
 
@@ -440,8 +448,9 @@ PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Fra
       const double zt = depthTest[i], zr = depthRef[i];
       if (std::fabs(zt - zr) <= tie * std::max(std::fabs(zt), std::fabs(zr))) e = Explanation::kDepthTie;
     } else if (e == Explanation::kUnexplained) {
-      // One side only, off every edge: a surface at the near or the far plane, which one
-      // path keeps and the other clips, tied with that plane within the same tolerance.
+      // One side only (with the diagnostics, off every edge): a surface at the near or the far
+      // plane, which one path keeps and the other clips, tied with that plane within the same
+      // tolerance.
       const double z = t ? depthTest[i] : depthRef[i];
       for (double clip : clips) {
         if (std::fabs(z - clip) <= tie * std::fabs(z)) e = Explanation::kDepthTie;
@@ -458,10 +467,8 @@ PlaneVector<Explanation> explainDisagreements(const Framebuffer& test, const Fra
       report.firstUnexplained = {int(i % width), int(i / width), double(testIds[i]), double(refIds[i])};
     }
   }
-  const double covered = double(std::max<std::size_t>(report.coveredEither, 1));
-  report.untiedDisagreementFraction = double(report.classCounts[int(PixelClass::kDifferentTriangle)] - tied[0]) / covered;
-  report.untiedCoverageFraction = double(report.classCounts[int(PixelClass::kTestOnly)] +
-                                         report.classCounts[int(PixelClass::kReferenceOnly)] - tied[1]) / covered;
+  report.untiedDisagreementFraction = ofCovered(report, report.classCounts[int(PixelClass::kDifferentTriangle)] - tied[0]);
+  report.untiedCoverageFraction = ofCovered(report, oneSideOnly(report) - tied[1]);
   return explanations;
 }
 

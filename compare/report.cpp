@@ -138,6 +138,14 @@ nlohmann::json reportToJson(const CompareReport& r) {
   return j;
 }
 
+std::string disagreementCounts(const CompareReport& r) {
+  const std::string edges = r.explained ? "in the edge band (" + formatNumber(r.edgeBand) + " px)" : "at an edge of the ids";
+  return std::to_string(r.explanationCounts[int(r.explained ? Explanation::kEdgeBand : Explanation::kIdEdge)]) + " " +
+         edges + ", " + std::to_string(r.explanationCounts[int(Explanation::kDepthTie)]) + " depth ties" +
+         (r.explained ? "" : " (within the depth limit)") + ", " +
+         std::to_string(r.explanationCounts[int(Explanation::kUnexplained)]) + " unexplained";
+}
+
 std::string reportToTable(const CompareReport& r) {
   std::ostringstream out;
   const auto& cc = r.classCounts;
@@ -149,13 +157,7 @@ std::string reportToTable(const CompareReport& r) {
                 cc[int(PixelClass::kDifferentTriangle)], formatNumber(r.disagreementFraction).c_str(),
                 cc[int(PixelClass::kTestOnly)], cc[int(PixelClass::kReferenceOnly)]);
   out << line;
-  // Why the disagreements are allowed: by the diagnostics, else by the ids and depths.
-  const std::string edges = r.explained ? "in the edge band (" + formatNumber(r.edgeBand) + " px)" : "at an edge of the ids";
-  std::snprintf(line, sizeof line, "disagreements: %zu %s, %zu depth ties%s, %zu unexplained\n",
-                r.explanationCounts[int(r.explained ? Explanation::kEdgeBand : Explanation::kIdEdge)], edges.c_str(),
-                r.explanationCounts[int(Explanation::kDepthTie)], r.explained ? "" : " (within the depth limit)",
-                r.explanationCounts[int(Explanation::kUnexplained)]);
-  out << line;
+  out << "disagreements: " << disagreementCounts(r) << "\n";
   std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %9s %9s %5s %9s %9s  %s\n", "family", "max",
                 "mean", "p99.9", "max ulps", "max/bound", "n+i", "limit", "p99.9/bnd", "largest error at: test / ref");
   out << line;

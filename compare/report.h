@@ -20,6 +20,10 @@ nlohmann::json reportToJson(const CompareReport& report);
 // nlohmann::json would otherwise throw after all the work was done.
 std::string jsonDocument(const nlohmann::json& j);
 std::string reportToTable(const CompareReport& report);
+// Why the disagreements are allowed, as the table and the HTML report say it: "11 in the edge
+// band (0.0055 px), 13 depth ties, 17 unexplained" with the diagnostics, else "8 at an edge of
+// the ids, 0 depth ties (within the depth limit), 1 unexplained".
+std::string disagreementCounts(const CompareReport& report);
 
 // "1.23e-07": compact, locale-independent.
 std::string formatNumber(double value);

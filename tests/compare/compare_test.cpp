@@ -1015,16 +1015,15 @@ TEST(CompareLimits, WithoutDiagnosticsADisagreementLiesAtAnEdgeOfTheIdsOrTiesInD
   for (const Case& c : cases) {
     Framebuffer heatmap;
     const CompareReport r = compareImages(c.test, "t.exr", image(), "r.exr", limits, &heatmap);
-    const std::size_t disagreeing = c.disagreeing;
     EXPECT_FALSE(r.explained) << c.what;
-    EXPECT_EQ(r.explanationCounts[int(Explanation::kIdEdge)], disagreeing - c.inside - c.ties) << c.what;
+    EXPECT_EQ(r.explanationCounts[int(Explanation::kIdEdge)], c.disagreeing - c.inside - c.ties) << c.what;
     EXPECT_EQ(r.explanationCounts[int(Explanation::kDepthTie)], c.ties) << c.what;
     EXPECT_EQ(r.explanationCounts[int(Explanation::kUnexplained)], c.inside) << c.what;
     EXPECT_EQ(r.explanationCounts[int(Explanation::kEdgeBand)], 0u) << c.what;
     EXPECT_EQ(r.pass, c.inside == 0) << c.what << ": " << reasons(r);
     const std::uint32_t centre = heatmap.find("explanation.id")->uints[std::size_t(4) * kW + 4];
     const std::uint32_t corner = heatmap.find("explanation.id")->uints[std::size_t(3) * kW + 3];
-    if (disagreeing == 9) {
+    if (c.disagreeing == 9) {
       EXPECT_EQ(centre, std::uint32_t(c.inside ? Explanation::kUnexplained : Explanation::kDepthTie)) << c.what;
       EXPECT_EQ(corner, std::uint32_t(c.ties ? Explanation::kDepthTie : Explanation::kIdEdge)) << c.what;
       EXPECT_EQ(heatmap.find("R")->floats[std::size_t(4) * kW + 4], c.inside ? linearFromSrgb(kColourUnexplained)[0] : 0.0f)

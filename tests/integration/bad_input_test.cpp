@@ -472,11 +472,11 @@ TEST(BadInput, AnImageTooLargeForTheMemoryIsNamed) {
   constexpr int kSide = 8000;
   Imf::Header header(kSide, kSide);
   header.compression() = Imf::RLE_COMPRESSION;
-  const std::vector<float> row(kSide, 0.25f);
+  std::vector<float> row(kSide, 0.25f);
   Imf::FrameBuffer slices;
   for (const char* name : {"bary.b0", "bary.b1", "bary.b2", "depth.z", "edge.dist", "bound.bary"}) {
     header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    slices.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(row.data())), 4, 0));
+    slices.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(row.data()), 4, 0));
   }
   {
     Imf::OutputFile file(big.c_str(), header);
