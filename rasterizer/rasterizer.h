@@ -74,14 +74,19 @@ struct RasterOptions {
   // rather than winner by winner. The same bits either way: off only to test that.
   bool gatheredResolve = true;
   // When every vertex lies inside the view volume, set up the triangles four at a time in
-  // order without testing each one's outcodes (rasterizer.cpp). The same bits either way: off
+  // order without testing each one's outcodes (pipeline.cpp). The same bits either way: off
   // only to test that.
   bool wholeMeshBatches = true;
   // Records each block of triangles has in the frame's array of coverage set-ups before it
-  // spills into a vector of its own (rasterizer.cpp's SetupList); 0 = as many as the block has
+  // spills into a vector of its own (pipeline.h's SetupList); 0 = as many as the block has
   // triangles, so that only clipped triangles that split into several set-ups can make a block
   // spill. The same bits either way: set only to test the spill.
   std::size_t setupSlice = 0;
+};
+
+// Wall-clock time of each stage of the last frame (rasterizer.cpp's stages 1, 2, 3 and 4).
+struct StageTimes {
+  double transformMs = 0.0, setupMs = 0.0, binMs = 0.0, tilesMs = 0.0;
 };
 
 // A rasterizer that keeps its working memory (set-ups, bins) from frame to frame, as a real
@@ -91,11 +96,6 @@ struct RasterOptions {
 // rastercheck.cull: "back" when the frame culled back faces, else "none"); every
 // pixel of every channel is written, so `target`'s planes are reused when its size is
 // unchanged. No RGB preview. Throws usageError when subpixelBits does not fit the image size.
-// Wall-clock time of each stage of the last frame (rasterizer.cpp's stages 1, 2, 3 and 4).
-struct StageTimes {
-  double transformMs = 0.0, setupMs = 0.0, binMs = 0.0, tilesMs = 0.0;
-};
-
 class Rasterizer {
  public:
   explicit Rasterizer(const RasterOptions& options);

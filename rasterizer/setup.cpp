@@ -57,7 +57,7 @@ bool setupUnsnapped(const glm::dvec2 raster[3], const SetupContext& ctx, Coverag
   if (area == 0 || (ctx.cullBackFaces && area > 0)) return false;
   const auto [minX, maxX] = std::minmax({raster[0].x, raster[1].x, raster[2].x});
   const auto [minY, maxY] = std::minmax({raster[0].y, raster[1].y, raster[2].y});
-  // The guard band keeps |raster| below 2^21 pixels (rasterizer.cpp), well inside int.
+  // The guard band keeps |raster| below 2^21 pixels (pipeline.cpp), well inside int.
   c.minX = int(std::max(0.0, std::ceil(minX - 0.5)));
   c.minY = int(std::max(0.0, std::ceil(minY - 0.5)));
   c.maxX = int(std::min(double(ctx.width - 1), std::floor(maxX - 0.5)));

@@ -46,7 +46,7 @@ RC_KERNEL_INLINE void streamStagedRow(std::uint32_t* const* planes, int count, c
 // Each is always inlined into renderTile, so the phases share its registers and stack.
 
 // A tile's visibility buffer: each pixel's winner, as its position in job.bins (kEmpty where
-// none; positions stay below kMaxBlocks 2^20, rasterizer.cpp, so never kEmpty), and the
+// none; positions stay below kMaxBlocks 2^20, pipeline.cpp, so never kEmpty), and the
 // winner's depth key (larger is nearer). kPixels leaves a chunk of slack past the end, and the
 // rows coverRows may run past a box at the tile's bottom.
 template <typename Real>

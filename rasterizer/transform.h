@@ -1,4 +1,4 @@
-// Stage 1 of the rasterizer (rasterizer.cpp): world positions to clip space through the camera,
+// Stage 1 of the rasterizer (pipeline.cpp): world positions to clip space through the camera,
 // in double, with each vertex's outcode and raster position, and what a block of vertices tells
 // about the transform's rounding.
 #pragma once

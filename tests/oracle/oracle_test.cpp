@@ -89,7 +89,7 @@ TEST_P(HardCase, UnsnappedCoverageEqualsTheExactRuleOnItsRasterPositions) {
   const Scene scene = makeBuiltinScene(GetParam());
   const Camera& camera = scene.camera;
   const glm::dmat4 m = camera.clipFromWorld();
-  // rasterizer.cpp's guard band without snapping: 2^20 pixels from the centre, in NDC.
+  // pipeline.cpp's guard band without snapping: 2^20 pixels from the centre, in NDC.
   const double guard = 2.0 * std::ldexp(1.0, 20) / std::max(camera.width(), camera.height());
   const auto inside = [&](const glm::vec3& p) {
     const glm::dvec4 c = m * glm::dvec4(glm::dvec3(p), 1.0);

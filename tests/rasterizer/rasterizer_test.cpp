@@ -342,7 +342,7 @@ TEST(Rasterizer, WholeMeshBatchesGiveTheSameBitsAsTheOutcodeLoop) {
 }
 
 // Each block writes its coverage set-ups into its slice of one frame-wide array and spills into
-// a vector of its own when the slice is full (rasterizer.cpp's SetupList), which with full-size
+// a vector of its own when the slice is full (pipeline.h's SetupList), which with full-size
 // slices only clipped triangles splitting into several set-ups can cause. Slices of 1 record
 // (every block spills at once and grows its vector) and of 100 (the records already in the
 // slice move to the vector) must give the bits of full-size ones, frame after frame with one
@@ -528,7 +528,7 @@ TEST(Rasterizer, SubpixelBitsTooFineForTheImageAreRefused) {
   EXPECT_ANY_THROW(rasterize(wide, o));
 }
 
-// Binning packs tile coordinates in 8 bits (rasterizer.cpp, tileBoxOf): the widest image a
+// Binning packs tile coordinates in 8 bits (pipeline.cpp, tileBoxOf): the widest image a
 // camera takes, 16384 pixels, has 256 tile columns, and its last one is binned and drawn.
 TEST(Rasterizer, TheWidestImageBinsItsLastTileColumn) {
   RasterOptions o;

@@ -75,7 +75,7 @@ Counts compareBatches(int bits, bool cull, Isa isa, std::uint64_t seed) {
   ctx.unitRoundoff = sizeof(Real) == 4 ? 0x1p-24 : 0x1p-53, ctx.clipError = 3e-15;
   ctx.keyA = -0.001, ctx.keyB = 0.1;
   ctx.cullBackFaces = cull;
-  // Vertices within the guard band, 2^(28 - bits) pixels (rasterizer.cpp), at most 2^20; without
+  // Vertices within the guard band, 2^(28 - bits) pixels (pipeline.cpp), at most 2^20; without
   // snapping 8 bits'.
   const double guard = std::min(std::ldexp(1.0, 28 - (bits == 0 ? 8 : bits)), std::ldexp(1.0, 20)) * 0.99;
   std::mt19937_64 rng(seed);
