@@ -5,6 +5,9 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <string>
+
+#include "core/error.h"
 
 namespace rc::detail {
 namespace {
@@ -26,7 +29,13 @@ class HelperPool {
       std::lock_guard<std::mutex> lock(mutex_);
       while (int(threads_.size()) < helpers) {
         const int index = int(threads_.size());
-        threads_.emplace_back([this, index] { loop(index); });
+        try {
+          threads_.emplace_back([this, index] { loop(index); });
+        } catch (const std::system_error& e) {
+          // The helpers started wait for a later run; the pool stays usable.
+          busy_.store(false, std::memory_order_release);
+          threadStartFailed(index + 2, helpers + 1, e);
+        }
       }
       work_ = work;
       context_ = context;
@@ -91,6 +100,12 @@ class HelperPool {
 };
 
 }  // namespace
+
+void threadStartFailed(int worker, int workers, const std::exception& cause) {
+  throw Error(ExitCode::kIo, "cannot start worker thread " + std::to_string(worker) + " of " +
+                                 std::to_string(workers) + ": " + cause.what() +
+                                 " (memory or the limit on processes ran out; --threads 1 starts none)");
+}
 
 bool runOnHelpers(int helpers, void (*work)(void*, int), void* context) {
   static HelperPool pool;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -26,19 +27,33 @@ namespace detail {
 // Runs work(context, 0) on the calling thread and work(context, w) for w in [1, helpers] on
 // `helpers` threads kept from call to call (started and joined per call, a thread cost about
 // 35 to 40 us, and a frame runs four parallel loops), returning when every one of them has
-// returned. work() must not throw. Returns false without running anything when another call
+// returned. work() must not throw. Throws (threadStartFailed) where a helper cannot be
+// started, before running anything. Returns false without running anything when another call
 // holds the pool (a parallel loop started inside one, or from another thread): the caller
 // then starts threads of its own.
 bool runOnHelpers(int helpers, void (*work)(void*, int), void* context);
 
-// Runs worker(w) for every w in [0, threads), worker 0 on the calling thread.
+// Thrown where a thread cannot be started (memory or the process limit ran out), as an
+// rc::Error with exit code 4 naming the thread: "cannot start worker thread 2 of 2: ...".
+[[noreturn]] void threadStartFailed(int worker, int workers, const std::exception& cause);
+
+// Runs worker(w) for every w in [0, threads), worker 0 on the calling thread. Where a thread
+// cannot be started, the ones already started finish (each worker takes what work is left, so
+// they end) and are joined, and threadStartFailed throws.
 template <typename Worker>
 void runWorkers(int threads, Worker& worker) {
   const auto run = [](void* context, int w) { (*static_cast<Worker*>(context))(w); };
   if (!runOnHelpers(threads - 1, run, &worker)) {
     std::vector<std::thread> pool;
     pool.reserve(std::size_t(threads - 1));
-    for (int w = 1; w < threads; ++w) pool.emplace_back(worker, w);
+    for (int w = 1; w < threads; ++w) {
+      try {
+        pool.emplace_back(worker, w);
+      } catch (const std::system_error& e) {
+        for (auto& thread : pool) thread.join();
+        threadStartFailed(w + 1, threads, e);
+      }
+    }
     worker(0);
     for (auto& thread : pool) thread.join();
   }

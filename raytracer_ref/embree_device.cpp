@@ -1,16 +1,39 @@
 // Embree device and scene wrappers with deferred error reporting.
 #include "raytracer_ref/embree_device.h"
 
+#include <string>
+
 #include "core/error.h"
 
 namespace rc {
 
+namespace {
+
+// Embree's error code in words (rtcore_device.h).
+std::string describe(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    default: return "error " + std::to_string(int(code));
+  }
+}
+
+// Out of memory is a resource that ran out, like a full disk (exit 4); any other error of
+// Embree's is one no input explains (exit 5).
+Error embreeError(RTCError code, const std::string& what) {
+  if (code == RTC_ERROR_OUT_OF_MEMORY) return outOfMemory("Embree", what);
+  return internalError("Embree: " + describe(code) + " " + what);
+}
+
+}  // namespace
+
 EmbreeDevice::EmbreeDevice(const std::string& config) {
   device_ = rtcNewDevice(config.c_str());
-  if (!device_) {
-    throw internalError("Embree: cannot create a device with config '" + config +
-                        "' (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-  }
+  if (!device_) throw embreeError(rtcGetDeviceError(nullptr), "creating its device (config '" + config + "')");
   rtcSetDeviceErrorFunction(device_, &EmbreeDevice::onError, this);
 }
 
@@ -21,7 +44,8 @@ void EmbreeDevice::onError(void* self, RTCError code, const char* message) {
   auto* device = static_cast<EmbreeDevice*>(self);
   std::lock_guard<std::mutex> lock(device->mutex_);
   if (device->firstError_.empty()) {
-    device->firstError_ = "error " + std::to_string(int(code)) + ": " + (message ? message : "");
+    device->firstCode_ = code;
+    device->firstError_ = message && *message ? message : describe(code);
   }
 }
 
@@ -30,7 +54,7 @@ void EmbreeDevice::check(const char* during) {
   if (!firstError_.empty()) {
     const std::string error = firstError_;
     firstError_.clear();
-    throw internalError(std::string("Embree failed during ") + during + ": " + error);
+    throw embreeError(firstCode_, std::string("during ") + during + " (" + error + ")");
   }
 }
 

@@ -18,13 +18,15 @@ class EmbreeDevice {
   EmbreeDevice& operator=(const EmbreeDevice&) = delete;
 
   RTCDevice get() const { return device_; }
-  // Throws internalError with the first error recorded since the last check, naming `during`.
+  // Throws the first error recorded since the last check, naming `during`: outOfMemory
+  // (exit 4) where Embree ran out of memory, else internalError (exit 5).
   void check(const char* during);
 
  private:
   static void onError(void* self, RTCError code, const char* message);
   RTCDevice device_ = nullptr;
   std::mutex mutex_;
+  RTCError firstCode_ = RTC_ERROR_NONE;
   std::string firstError_;
 };
 

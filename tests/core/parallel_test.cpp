@@ -1,5 +1,6 @@
-// parallelFor and parallelForQueues: every index once, exceptions brought back, and the
-// helper threads they keep between calls shared safely by nested and concurrent loops.
+// parallelFor and parallelForQueues: every index once, exceptions brought back, the helper
+// threads they keep between calls shared safely by nested and concurrent loops, and a thread
+// that cannot start named.
 #include "core/parallel.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,9 @@
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include "core/error.h"
+#include "tests/limited_memory.h"
 
 namespace rc {
 namespace {
@@ -29,6 +33,31 @@ TEST(ParallelFor, VisitsEveryIndexOnceForAnyThreadCount) {
       EXPECT_EQ(visits(count, threads), std::vector<int>(count, 1)) << count << " items, " << threads << " threads";
     }
   }
+}
+
+// Runs `loop` where no thread's stack fits, then checks that a loop on 2 threads still visits
+// every index (tests/limited_memory.h).
+template <typename Loop>
+[[noreturn]] void failToStartAThread(Loop&& loop) {
+  testing::exitAfterRunningOutOfMemory(1 << 20, loop, [] { return visits(100, 2) == std::vector<int>(100, 1); });
+}
+
+// A thread that cannot be started (memory or the process limit ran out) is an rc::Error with
+// exit code 4 that names it, not a std::system_error (exit 5, "internal error"), both where
+// the kept helpers are started and where a nested loop starts threads of its own; the loop
+// can run again once threads can start.
+TEST(ParallelFor, AThreadThatCannotStartIsNamedWithExitCode4) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "the sanitizer's shadow memory does not run in a limited address space";
+#endif
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: no helper started yet
+  const auto noop = [](int) {};
+  EXPECT_EXIT(failToStartAThread([&] { parallelFor(8, 2, noop); }), ::testing::ExitedWithCode(4),
+              "cannot start worker thread 2 of 2: .*--threads 1");
+  EXPECT_EXIT(failToStartAThread([&] {
+                parallelFor(2, 2, [&](int) { parallelFor(8, 2, noop); });
+              }),
+              ::testing::ExitedWithCode(4), "cannot start worker thread 2 of 2");
 }
 
 TEST(ParallelFor, RethrowsTheFirstExceptionAndStaysUsable) {

@@ -9,11 +9,13 @@
 #include <vector>
 
 #include "core/channels.h"
+#include "raytracer_ref/embree_device.h"
 #include "raytracer_ref/ray_triangle.h"
 #include "raytracer_ref/reference.h"
 #include "raytracer_ref/subdivide.h"
 #include "scenes/registry.h"
 #include "tests/analytic.h"
+#include "tests/limited_memory.h"
 #include "tests/same_bits.h"
 #include "tests/test_scenes.h"
 
@@ -133,6 +135,23 @@ TEST(Reference, WritesEachAttributesSpreadOverTheHitTriangle) {
       EXPECT_GT(hits, 0u) << name << ": " << a.name;
     }
   }
+}
+
+// Embree out of memory (its device cannot be made where the address space is full) is named,
+// exit 4 like a full disk, not an internal error (exit 5) that asks for a report; once memory
+// is back a device is made.
+TEST(Reference, EmbreeOutOfMemoryIsNamedWithExitCode4) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "the sanitizer's shadow memory does not run in a limited address space";
+#endif
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const auto makeDevice = [] { EmbreeDevice device("threads=2"); };
+  EXPECT_EXIT(testing::exitAfterRunningOutOfMemory(1 << 20, makeDevice,
+                                                  [&] {
+                                                    makeDevice();
+                                                    return true;
+                                                  }),
+              ::testing::ExitedWithCode(4), "Embree: out of memory creating its device \\(config 'threads=2'\\)");
 }
 
 TEST(Reference, OutputBitsAreIdenticalForOneAndTwoThreads) {
