@@ -224,19 +224,18 @@ constexpr Panel kPanels[] = {{"barycentric error, p99.9 (log)", &BenchRow::baryP
 constexpr int kWidth = 1000, kHeader = 58, kRowHeight = 332, kFooter = 92;
 constexpr int kLabelSize = 11, kTickSize = 11;
 
-// One panel: frame time (shared by the row's panels) against one error, its Pareto front
-// dashed and ringed, every point labelled.
-void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& rows, const Panel& panel,
-               const std::string& defaultName, double tLo, double tHi, const Box& plot) {
-  d.items.push_back(Text{plot.x0, plot.y0 - 10, panel.title, 12, kInk});
-  const auto x = [&](double ms) { return plot.x0 + (std::log10(ms / tLo)) / std::log10(tHi / tLo) * (plot.x1 - plot.x0); };
-  for (double t : timeTicks(tLo, tHi)) {
-    d.items.push_back(Line{x(t), plot.y0, x(t), plot.y1, kGrid, 1});
-    d.items.push_back(Text{x(t), plot.y1 + 15, formatTick(t), kTickSize, kGrey, Anchor::kMiddle});
+// A panel's error axis: decades over the positive errors, an error of 0 on a row of its own at
+// the bottom, drawn with its grid; y(e) places an error.
+struct ErrorAxis {
+  double logBottom, zeroY;
+  int lo, hi;
+  double y(double e, const Box& plot) const {
+    if (e == 0) return zeroY;
+    return logBottom - (std::log10(e) - lo) / (hi - lo) * (logBottom - plot.y0 - 6);
   }
-  d.items.push_back(Text{(plot.x0 + plot.x1) / 2, plot.y1 + 33, "frame time, ms (log)", kTickSize, kGrey, Anchor::kMiddle});
+};
 
-  // Errors: decades over the positive values; an error of 0 on a row of its own at the bottom.
+ErrorAxis drawErrorAxis(Drawing& d, const std::vector<const BenchRow*>& rows, const Panel& panel, const Box& plot) {
   double eMin = INFINITY, eMax = 0;
   bool zero = false;
   for (const BenchRow* r : rows) {
@@ -247,33 +246,25 @@ void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& row
   const bool positive = eMax > 0;
   if (!positive) eMin = eMax = 1e-9;
   const int lo = int(std::floor(std::log10(eMin))), hi = std::max(int(std::ceil(std::log10(eMax))), lo + 1);
-  const double logBottom = plot.y1 - (zero ? 26 : 6), zeroY = plot.y1 - 7;
-  const auto y = [&](double e) {
-    if (e == 0) return zeroY;
-    return logBottom - (std::log10(e) - lo) / (hi - lo) * (logBottom - plot.y0 - 6);
-  };
+  const ErrorAxis axis{plot.y1 - (zero ? 26 : 6), plot.y1 - 7, lo, hi};
   // Without a positive error there are no decades to mark, only the row of 0.
   const int every = hi - lo > 8 ? 2 : 1, last = positive ? hi : lo - 1;
   for (int k = lo; k <= last; k += every) {
-    d.items.push_back(Line{plot.x0, y(std::pow(10.0, k)), plot.x1, y(std::pow(10.0, k)), kGrid, 1});
-    d.items.push_back(Text{plot.x0 - 6, y(std::pow(10.0, k)) + 4, "1e" + std::to_string(k), kTickSize, kGrey, Anchor::kEnd});
+    const double y = axis.y(std::pow(10.0, k), plot);
+    d.items.push_back(Line{plot.x0, y, plot.x1, y, kGrid, 1});
+    d.items.push_back(Text{plot.x0 - 6, y + 4, "1e" + std::to_string(k), kTickSize, kGrey, Anchor::kEnd});
   }
   if (zero) {
-    d.items.push_back(Line{plot.x0, zeroY, plot.x1, zeroY, kGrid, 1, 2});
-    d.items.push_back(Text{plot.x0 - 6, zeroY + 4, "0", kTickSize, kGrey, Anchor::kEnd});
+    d.items.push_back(Line{plot.x0, axis.zeroY, plot.x1, axis.zeroY, kGrid, 1, 2});
+    d.items.push_back(Text{plot.x0 - 6, axis.zeroY + 4, "0", kTickSize, kGrey, Anchor::kEnd});
   }
-  d.items.push_back(Line{plot.x0, plot.y1, plot.x1, plot.y1, kGrey, 1});
-  d.items.push_back(Line{plot.x0, plot.y0, plot.x0, plot.y1, kGrey, 1});
+  return axis;
+}
 
-  std::vector<const BenchRow*> shown;
-  std::vector<Point> values, screen;
-  for (const BenchRow* r : rows) {
-    const double e = r->*panel.error;
-    if (!(r->rasterMs > 0) || !std::isfinite(r->rasterMs) || !(e >= 0) || !std::isfinite(e)) continue;
-    shown.push_back(r);
-    values.push_back({r->rasterMs, e});
-    screen.push_back({x(r->rasterMs), y(e)});
-  }
+// A panel's points: `shown` at `screen` (their values in `values`), the Pareto front dashed
+// and ringed, every point labelled where placeLabels finds room.
+void drawPoints(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& shown, const std::vector<Point>& values,
+                const std::vector<Point>& screen, const Panel& panel, const std::string& defaultName, const Box& plot) {
   const std::vector<std::size_t> front = chart::paretoFront(values);
   std::vector<chart::Segment> frontLines;
   for (std::size_t k = 1; k < front.size(); ++k) {
@@ -323,6 +314,32 @@ void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& row
   }
 }
 
+// One panel: frame time (shared by the row's panels) against one error.
+void drawPanel(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& rows, const Panel& panel,
+               const std::string& defaultName, double tLo, double tHi, const Box& plot) {
+  d.items.push_back(Text{plot.x0, plot.y0 - 10, panel.title, 12, kInk});
+  const auto x = [&](double ms) { return plot.x0 + (std::log10(ms / tLo)) / std::log10(tHi / tLo) * (plot.x1 - plot.x0); };
+  for (double t : timeTicks(tLo, tHi)) {
+    d.items.push_back(Line{x(t), plot.y0, x(t), plot.y1, kGrid, 1});
+    d.items.push_back(Text{x(t), plot.y1 + 15, formatTick(t), kTickSize, kGrey, Anchor::kMiddle});
+  }
+  d.items.push_back(Text{(plot.x0 + plot.x1) / 2, plot.y1 + 33, "frame time, ms (log)", kTickSize, kGrey, Anchor::kMiddle});
+  const ErrorAxis axis = drawErrorAxis(d, rows, panel, plot);
+  d.items.push_back(Line{plot.x0, plot.y1, plot.x1, plot.y1, kGrey, 1});
+  d.items.push_back(Line{plot.x0, plot.y0, plot.x0, plot.y1, kGrey, 1});
+
+  std::vector<const BenchRow*> shown;
+  std::vector<Point> values, screen;
+  for (const BenchRow* r : rows) {
+    const double e = r->*panel.error;
+    if (!(r->rasterMs > 0) || !std::isfinite(r->rasterMs) || !(e >= 0) || !std::isfinite(e)) continue;
+    shown.push_back(r);
+    values.push_back({r->rasterMs, e});
+    screen.push_back({x(r->rasterMs), axis.y(e, plot)});
+  }
+  drawPoints(d, fonts, shown, values, screen, panel, defaultName, plot);
+}
+
 // `text`, or it losing its middle a tenth at a time until `fits` holds or 12 characters are left.
 std::string elideUntil(const std::string& text, const std::function<bool(const std::string&)>& fits) {
   std::string out = text;
@@ -333,14 +350,9 @@ std::string elideUntil(const std::string& text, const std::function<bool(const s
   return out;
 }
 
-Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load) {
-  Fonts fonts;
-  std::vector<std::string> scenes;  // in the order bench ran them
-  for (const BenchRow& r : rows) {
-    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-  }
-  // The machine's line, or two where it does not fit (a long CPU name): the hardware, then the
-  // builds, each losing its middle where even that is too long. Then the load's.
+// The lines under the title: the machine's, or two where it does not fit (a long CPU name): the
+// hardware, then the builds, each losing its middle where even that is too long. Then the load's.
+std::vector<std::string> aboutLines(Fonts& fonts, const BenchMachine* machine, const BenchLoad* load) {
   std::vector<std::string> about;
   const auto fits = [&](const std::string& text) { return fonts.width(text, 11) <= kWidth - 40.0; };
   if (machine) {
@@ -352,57 +364,53 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, c
     about.push_back("load during the run: " + describe(*load));
     if (const std::string note = busyNote(*load); !note.empty()) about.push_back(note);
   }
-  const int header = kHeader + 14 * std::max(0, int(about.size()) - 1);
-  Drawing d;
-  d.width = kWidth;
-  d.height = header + kRowHeight * int(scenes.size()) + kFooter;
-  d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, per setting", 16, kInk});
-  for (std::size_t i = 0; i < about.size(); ++i) d.items.push_back(Text{20, 47 + 14 * double(i), about[i], 11, kGrey});
-  std::string defaultName = benchSettingName(Interpolation::kPerspective, Precision::kFloat, 8);
-  for (std::size_t s = 0; s < scenes.size(); ++s) {
-    std::vector<const BenchRow*> mine;
-    for (const BenchRow& r : rows) {
-      if (r.scene == scenes[s]) mine.push_back(&r);
-    }
-    const BenchRow* head = mine.front();
-    for (const BenchRow* r : mine) {
-      if (r->isDefault) head = r, defaultName = r->setting;
-    }
-    const double top = header + kRowHeight * double(s);
-    char facts[512];
-    std::snprintf(facts, sizeof facts,
-                  ": %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
-                  withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
-                  head->runs > 0 ? (", " + timingPhrase(head->runs)).c_str() : "",
-                  head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
-                  head->referenceBuildMs);
-    std::string conditions = facts;
-    // A scene that other work made busy says so, with the share it took (bench's rows carry it).
-    if (head->load && !busyNote(*head->load).empty()) {
-      conditions += "; busy: other work " + percentOf(head->load->others + head->load->steal);
-    }
-    // A long scene name (a path) loses its middle rather than the conditions their end.
-    const std::string name =
-        elideUntil(head->scene, [&](const std::string& n) { return fonts.width(n + conditions, 13) <= kWidth - 40.0; });
-    d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});
-    d.items.push_back(Text{20, top + 26, name + conditions, 13, kInk});
-    double tMin = INFINITY, tMax = 0;
-    for (const BenchRow* r : mine) {
-      if (r->rasterMs > 0 && std::isfinite(r->rasterMs)) tMin = std::min(tMin, r->rasterMs), tMax = std::max(tMax, r->rasterMs);
-    }
-    if (!(tMax > 0)) tMin = tMax = 1;
-    // A margin either side, and at least a factor of 2.5 across, so that close points stay apart
-    // from the edges and a narrow spread is not blown up.
-    double tLo = tMin / 1.15, tHi = tMax * 1.15;
-    if (tHi / tLo < 2.5) {
-      const double middle = std::sqrt(tLo * tHi);
-      tLo = middle / std::sqrt(2.5), tHi = middle * std::sqrt(2.5);
-    }
-    for (int p = 0; p < 2; ++p) {
-      const Box plot{p * 500.0 + 70, top + 60, p * 500.0 + 482, top + 284};
-      drawPanel(d, fonts, mine, kPanels[p], defaultName, tLo, tHi, plot);
-    }
+  return about;
+}
+
+// One scene's row from `top` down: its conditions, and its two panels over a shared time axis.
+// `defaultName` becomes the scene's default setting's name, where it has one.
+void drawScene(Drawing& d, Fonts& fonts, const std::vector<const BenchRow*>& mine, double top, std::string& defaultName) {
+  const BenchRow* head = mine.front();
+  for (const BenchRow* r : mine) {
+    if (r->isDefault) head = r, defaultName = r->setting;
   }
+  char facts[512];
+  std::snprintf(facts, sizeof facts,
+                ": %s triangles, %dx%d, %d threads%s; reference (Embree %s): trace %.3g ms, BVH build %.3g ms",
+                withThousands(head->triangles).c_str(), head->width, head->height, head->threads,
+                head->runs > 0 ? (", " + timingPhrase(head->runs)).c_str() : "",
+                head->referenceIsa.empty() ? "?" : head->referenceIsa.c_str(), head->referenceTraceMs,
+                head->referenceBuildMs);
+  std::string conditions = facts;
+  // A scene that other work made busy says so, with the share it took (bench's rows carry it).
+  if (head->load && !busyNote(*head->load).empty()) {
+    conditions += "; busy: other work " + percentOf(head->load->others + head->load->steal);
+  }
+  // A long scene name (a path) loses its middle rather than the conditions their end.
+  const std::string name =
+      elideUntil(head->scene, [&](const std::string& n) { return fonts.width(n + conditions, 13) <= kWidth - 40.0; });
+  d.items.push_back(Line{20, top + 6, kWidth - 20.0, top + 6, kGrid, 1});
+  d.items.push_back(Text{20, top + 26, name + conditions, 13, kInk});
+  double tMin = INFINITY, tMax = 0;
+  for (const BenchRow* r : mine) {
+    if (r->rasterMs > 0 && std::isfinite(r->rasterMs)) tMin = std::min(tMin, r->rasterMs), tMax = std::max(tMax, r->rasterMs);
+  }
+  if (!(tMax > 0)) tMin = tMax = 1;
+  // A margin either side, and at least a factor of 2.5 across, so that close points stay apart
+  // from the edges and a narrow spread is not blown up.
+  double tLo = tMin / 1.15, tHi = tMax * 1.15;
+  if (tHi / tLo < 2.5) {
+    const double middle = std::sqrt(tLo * tHi);
+    tLo = middle / std::sqrt(2.5), tHi = middle * std::sqrt(2.5);
+  }
+  for (int p = 0; p < 2; ++p) {
+    const Box plot{p * 500.0 + 70, top + 60, p * 500.0 + 482, top + 284};
+    drawPanel(d, fonts, mine, kPanels[p], defaultName, tLo, tHi, plot);
+  }
+}
+
+// The legend at the foot: the three kinds of point and the Pareto front.
+void drawLegend(Drawing& d, const std::string& defaultName) {
   const double legend = d.height - kFooter + 18.0;
   d.items.push_back(Line{20, legend - 12, kWidth - 20.0, legend - 12, kGrid, 1});
   d.items.push_back(Dot{30, legend, 6, kDefault});
@@ -417,6 +425,30 @@ Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, c
   d.items.push_back(Dot{570, legend, 4.5, kArithmetic, 1.6});
   d.items.push_back(Text{582, legend + 4, "Pareto front: nothing else as fast and as accurate", 11, kInk});
   d.items.push_back(Text{520, legend + 24, "an error of 0 sits on the row marked 0", 11, kInk});
+}
+
+Drawing layOut(const std::vector<BenchRow>& rows, const BenchMachine* machine, const BenchLoad* load) {
+  Fonts fonts;
+  std::vector<std::string> scenes;  // in the order bench ran them
+  for (const BenchRow& r : rows) {
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  }
+  const std::vector<std::string> about = aboutLines(fonts, machine, load);
+  const int header = kHeader + 14 * std::max(0, int(about.size()) - 1);
+  Drawing d;
+  d.width = kWidth;
+  d.height = header + kRowHeight * int(scenes.size()) + kFooter;
+  d.items.push_back(Text{20, 28, "rastercheck bench: rasterizer frame time against error, per setting", 16, kInk});
+  for (std::size_t i = 0; i < about.size(); ++i) d.items.push_back(Text{20, 47 + 14 * double(i), about[i], 11, kGrey});
+  std::string defaultName = benchSettingName(Interpolation::kPerspective, Precision::kFloat, 8);
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    std::vector<const BenchRow*> mine;
+    for (const BenchRow& r : rows) {
+      if (r.scene == scenes[s]) mine.push_back(&r);
+    }
+    drawScene(d, fonts, mine, header + kRowHeight * double(s), defaultName);
+  }
+  drawLegend(d, defaultName);
   return d;
 }
 

@@ -59,6 +59,68 @@ nlohmann::json number(double value) {
   return formatNumber(value);
 }
 
+// Why each disagreement is allowed: by the diagnostics (edge band, depth tie within the
+// resolutions) or, without them, by the ids and depths (id edge, depth tie within the limit).
+nlohmann::json disagreementsJson(const CompareReport& r) {
+  nlohmann::json e = {{"by", r.explained ? "diagnostics" : "ids"}};
+  for (int c = 0; c < kExplanationCount; ++c) {
+    if (Explanation(c) == (r.explained ? Explanation::kIdEdge : Explanation::kEdgeBand)) continue;
+    e[explanationName(Explanation(c))] = r.explanationCounts[c];
+  }
+  if (r.explained) {
+    e["edge_band_pixels"] = number(r.edgeBand);
+  } else {
+    e["untied_disagreement_fraction"] = number(r.untiedDisagreementFraction);
+    e["untied_coverage_fraction"] = number(r.untiedCoverageFraction);
+  }
+  if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
+  return e;
+}
+
+// The limits gated and those warned at (null where not set).
+nlohmann::json thresholdsJson(const Thresholds& t) {
+  nlohmann::json j = {{"bary", t.bary},
+                      {"depth", t.depth},
+                      {"attribute", t.attribute},
+                      {"disagreement", t.disagreement},
+                      {"coverage", t.coverage},
+                      {"allow_empty", t.allowEmpty},
+                      {"attributes", t.attributes},
+                      {"attribute_by_name", t.attributeByName}};
+  const Thresholds::Warnings& w = t.warn;
+  const auto limit = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  j["warn"] = {{"bary", limit(w.bary)},
+               {"depth", limit(w.depth)},
+               {"attribute", limit(w.attribute)},
+               {"disagreement", limit(w.disagreement)},
+               {"coverage", limit(w.coverage)},
+               {"attribute_by_name", w.attributeByName},
+               {"fail", w.fail}};
+  return j;
+}
+
+// One family's statistics, its ulps and bound ratio, and its worst pixel.
+nlohmann::json familyJson(const FamilyReport& f) {
+  const FamilyStats& s = f.stats;
+  nlohmann::json fj = {{"unit", f.unit},        {"count", s.count},     {"nan", s.nanCount},
+                       {"inf", s.infCount},     {"max", number(s.max)}, {"mean", number(s.mean)},
+                       {"rms", number(s.rms)},  {"p50", number(s.p50)}, {"p99", number(s.p99)},
+                       {"p999", number(s.p999)}, {"threshold", f.threshold},
+                       {"gated", number(f.gated)}};
+  if (f.isAttribute()) fj["range"] = number(f.range);
+  fj["bounded"] = f.bounded;
+  fj["ulps"] = {{"max", number(f.ulps.max)}, {"p999", number(f.ulps.p999)}};
+  if (f.bounded) {
+    fj["bound_ratio"] = {{"max", number(f.ratio.max)}, {"p999", number(f.ratio.p999)}};
+    if (f.ratio.worst.x >= 0) fj["bound_ratio"]["worst"] = {{"x", f.ratio.worst.x}, {"y", f.ratio.worst.y}};
+  }
+  if (s.worst.x >= 0) {
+    fj["worst"] = {{"x", s.worst.x}, {"y", s.worst.y}, {"test", number(s.worst.test)},
+                   {"reference", number(s.worst.reference)}};
+  }
+  return fj;
+}
+
 }  // namespace
 
 nlohmann::json reportToJson(const CompareReport& r) {
@@ -78,62 +140,13 @@ nlohmann::json reportToJson(const CompareReport& r) {
   j["pixels"] = pixels;
   j["disagreement_fraction"] = number(r.disagreementFraction);
   j["coverage_fraction"] = number(r.coverageFraction);
-  // Why each disagreement is allowed: by the diagnostics (edge band, depth tie within the
-  // resolutions) or, without them, by the ids and depths (id edge, depth tie within the limit).
-  nlohmann::json e = {{"by", r.explained ? "diagnostics" : "ids"}};
-  for (int c = 0; c < kExplanationCount; ++c) {
-    if (Explanation(c) == (r.explained ? Explanation::kIdEdge : Explanation::kEdgeBand)) continue;
-    e[explanationName(Explanation(c))] = r.explanationCounts[c];
-  }
-  if (r.explained) {
-    e["edge_band_pixels"] = number(r.edgeBand);
-  } else {
-    e["untied_disagreement_fraction"] = number(r.untiedDisagreementFraction);
-    e["untied_coverage_fraction"] = number(r.untiedCoverageFraction);
-  }
-  if (r.firstUnexplained.x >= 0) e["first_unexplained"] = {{"x", r.firstUnexplained.x}, {"y", r.firstUnexplained.y}};
-  j["disagreements"] = e;
-  j["thresholds"] = {{"bary", r.thresholds.bary},
-                     {"depth", r.thresholds.depth},
-                     {"attribute", r.thresholds.attribute},
-                     {"disagreement", r.thresholds.disagreement},
-                     {"coverage", r.thresholds.coverage},
-                     {"allow_empty", r.thresholds.allowEmpty},
-                     {"attributes", r.thresholds.attributes},
-                     {"attribute_by_name", r.thresholds.attributeByName}};
-  const Thresholds::Warnings& w = r.thresholds.warn;
-  const auto limit = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
-  j["thresholds"]["warn"] = {{"bary", limit(w.bary)},
-                             {"depth", limit(w.depth)},
-                             {"attribute", limit(w.attribute)},
-                             {"disagreement", limit(w.disagreement)},
-                             {"coverage", limit(w.coverage)},
-                             {"attribute_by_name", w.attributeByName},
-                             {"fail", w.fail}};
+  j["disagreements"] = disagreementsJson(r);
+  j["thresholds"] = thresholdsJson(r.thresholds);
   j["baseline"] = r.baseline ? nlohmann::json{{"file", r.baseline->file}, {"factor", r.baseline->factor}}
                              : nlohmann::json(nullptr);
   j["left_out"] = r.leftOut;
   nlohmann::json families = nlohmann::json::object();
-  for (const FamilyReport& f : r.families) {
-    const FamilyStats& s = f.stats;
-    nlohmann::json fj = {{"unit", f.unit},        {"count", s.count},     {"nan", s.nanCount},
-                         {"inf", s.infCount},     {"max", number(s.max)}, {"mean", number(s.mean)},
-                         {"rms", number(s.rms)},  {"p50", number(s.p50)}, {"p99", number(s.p99)},
-                         {"p999", number(s.p999)}, {"threshold", f.threshold},
-                         {"gated", number(f.gated)}};
-    if (f.isAttribute()) fj["range"] = number(f.range);
-    fj["bounded"] = f.bounded;
-    fj["ulps"] = {{"max", number(f.ulps.max)}, {"p999", number(f.ulps.p999)}};
-    if (f.bounded) {
-      fj["bound_ratio"] = {{"max", number(f.ratio.max)}, {"p999", number(f.ratio.p999)}};
-      if (f.ratio.worst.x >= 0) fj["bound_ratio"]["worst"] = {{"x", f.ratio.worst.x}, {"y", f.ratio.worst.y}};
-    }
-    if (s.worst.x >= 0) {
-      fj["worst"] = {{"x", s.worst.x}, {"y", s.worst.y}, {"test", number(s.worst.test)},
-                     {"reference", number(s.worst.reference)}};
-    }
-    families[f.name] = fj;
-  }
+  for (const FamilyReport& f : r.families) families[f.name] = familyJson(f);
   j["families"] = families;
   return j;
 }

@@ -208,75 +208,95 @@ void writeExr(const Framebuffer& fb, const std::string& path, ExrCompression com
   out.commit();
 }
 
+namespace {
+
+// The frame an EXR's header declares, checked before anything is allocated: a whole frame
+// (data window = display window from (0,0)) of at most kMaxImageSide a side, whose pixel data
+// fits the memory budget and is plausible for the file's size (a 30-byte file must not make us
+// allocate gigabytes). Returns its width and height; `pixels` says them with the channels and
+// bytes, for running out of memory.
+Imath::V2i checkFrame(const std::string& path, const Imf::Header& header, std::string& pixels) {
+  const Imath::Box2i window = header.dataWindow();
+  const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+  const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide) {
+    throw badInput(path + ": dataWindow", "absurd size " + std::to_string(width) + "x" +
+                                              std::to_string(height));
+  }
+  int channelCount = 0;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channelCount;
+  const unsigned long long raw = static_cast<unsigned long long>(width) * height * 4ull * channelCount;
+  if (raw > kMaxImageBytes) {
+    throw badInput(path + ": dataWindow", std::to_string(width) + "x" + std::to_string(height) + " with " +
+                                              std::to_string(channelCount) + " channels exceeds the 4 GiB image limit");
+  }
+  pixels = std::to_string(width) + "x" + std::to_string(height) + " pixels in " + std::to_string(channelCount) +
+           " channels (" + std::to_string(raw) + " bytes)";
+  std::error_code sizeError;
+  const unsigned long long fileSize = std::filesystem::file_size(path, sizeError);
+  if (!sizeError && fileSize * kMaxCompressionRatio < raw) {
+    throw badInput(path + ": dataWindow", "declares " + std::to_string(raw) + " bytes of pixels in a file of " +
+                                              std::to_string(fileSize) + " bytes: truncated or corrupt");
+  }
+  // Pixel (x, y) of a frame is the camera's pixel (x, y) only where the data window is the
+  // whole display window and starts at (0, 0): a shifted or cropped data window would
+  // otherwise be compared as if it were aligned with the other image.
+  const Imath::Box2i display = header.displayWindow();
+  if (window != display) {
+    throw badInput(path + ": dataWindow", boxText(window) + " is not the displayWindow " + boxText(display) +
+                                              "; compare reads whole frames (docs/compare.md)");
+  }
+  if (display.min != Imath::V2i(0, 0)) {
+    throw badInput(path + ": displayWindow", boxText(display) +
+                                                 " does not start at (0,0); compare reads frames whose pixel (0,0) "
+                                                 "is the camera's (docs/compare.md)");
+  }
+  return {int(width), int(height)};
+}
+
+// A plane of `fb` for each channel the header declares, FLOAT or UINT at full resolution, and
+// the slices that read into them.
+Imf::FrameBuffer addChannels(const std::string& path, const Imf::Header& header, Framebuffer& fb) {
+  Imf::FrameBuffer slices;
+  const std::size_t xStride = 4, yStride = 4 * std::size_t(fb.width());
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+    const std::string name = it.name();
+    const Imf::Channel& ch = it.channel();
+    if (ch.xSampling != 1 || ch.ySampling != 1) {
+      throw badInput(path + ": channel " + name, "subsampled channels are not supported");
+    }
+    char* base = nullptr;
+    if (ch.type == Imf::UINT) {
+      base = reinterpret_cast<char*>(fb.addUint(name));
+    } else if (ch.type == Imf::FLOAT) {
+      base = reinterpret_cast<char*>(fb.addFloat(name));
+    } else {
+      throw badInput(path + ": channel " + name,
+                     "is HALF; rastercheck compares FLOAT data (HALF cannot hold ground truth)");
+    }
+    slices.insert(name, Imf::Slice(ch.type, base, xStride, yStride));
+  }
+  return slices;
+}
+
+}  // namespace
+
 Framebuffer readExr(const std::string& path) {
   setLimits();
   checkOpenable(path);
   std::string pixels = "its header";  // what was being read, for running out of memory
   try {
     Imf::InputFile file(path.c_str());
-    const Imath::Box2i window = file.header().dataWindow();
-    const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
-    const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
-    if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide) {
-      throw badInput(path + ": dataWindow", "absurd size " + std::to_string(width) + "x" +
-                                                std::to_string(height));
-    }
-    // Before allocating anything: the declared pixel data must fit the memory budget and be
-    // plausible for the file's size (a 30-byte file must not make us allocate gigabytes).
-    int channelCount = 0;
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) ++channelCount;
-    const unsigned long long raw = static_cast<unsigned long long>(width) * height * 4ull * channelCount;
-    if (raw > kMaxImageBytes) {
-      throw badInput(path + ": dataWindow", std::to_string(width) + "x" + std::to_string(height) + " with " +
-                                                std::to_string(channelCount) + " channels exceeds the 4 GiB image limit");
-    }
-    pixels = std::to_string(width) + "x" + std::to_string(height) + " pixels in " + std::to_string(channelCount) +
-             " channels (" + std::to_string(raw) + " bytes)";
-    std::error_code sizeError;
-    const unsigned long long fileSize = std::filesystem::file_size(path, sizeError);
-    if (!sizeError && fileSize * kMaxCompressionRatio < raw) {
-      throw badInput(path + ": dataWindow", "declares " + std::to_string(raw) + " bytes of pixels in a file of " +
-                                                std::to_string(fileSize) + " bytes: truncated or corrupt");
-    }
-    // Pixel (x, y) of a frame is the camera's pixel (x, y) only where the data window is the
-    // whole display window and starts at (0, 0): a shifted or cropped data window would
-    // otherwise be compared as if it were aligned with the other image.
-    const Imath::Box2i display = file.header().displayWindow();
-    if (window != display) {
-      throw badInput(path + ": dataWindow", boxText(window) + " is not the displayWindow " + boxText(display) +
-                                                "; compare reads whole frames (docs/compare.md)");
-    }
-    if (display.min != Imath::V2i(0, 0)) {
-      throw badInput(path + ": displayWindow", boxText(display) +
-                                                   " does not start at (0,0); compare reads frames whose pixel (0,0) "
-                                                   "is the camera's (docs/compare.md)");
-    }
-    Framebuffer fb(static_cast<int>(width), static_cast<int>(height));
-    Imf::FrameBuffer slices;
-    const std::size_t xStride = 4, yStride = 4 * std::size_t(width);
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
-      const std::string name = it.name();
-      const Imf::Channel& ch = it.channel();
-      if (ch.xSampling != 1 || ch.ySampling != 1) {
-        throw badInput(path + ": channel " + name, "subsampled channels are not supported");
-      }
-      char* base = nullptr;
-      if (ch.type == Imf::UINT) {
-        base = reinterpret_cast<char*>(fb.addUint(name));
-      } else if (ch.type == Imf::FLOAT) {
-        base = reinterpret_cast<char*>(fb.addFloat(name));
-      } else {
-        throw badInput(path + ": channel " + name,
-                       "is HALF; rastercheck compares FLOAT data (HALF cannot hold ground truth)");
-      }
-      slices.insert(name, Imf::Slice(ch.type, base, xStride, yStride));
-    }
+    const Imath::V2i size = checkFrame(path, file.header(), pixels);
+    Framebuffer fb(size.x, size.y);
+    const Imf::FrameBuffer slices = addChannels(path, file.header(), fb);
     for (auto it = file.header().begin(); it != file.header().end(); ++it) {
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
         fb.attributes[it.name()] = s->value();
       }
     }
     file.setFrameBuffer(slices);
+    const Imath::Box2i window = file.header().dataWindow();
     file.readPixels(window.min.y, window.max.y);
     if (!file.isComplete()) throw badInput(path, "truncated: some pixel data is missing");
     return fb;
