@@ -9,6 +9,16 @@
 
 #include "core/error.h"
 
+// Whether AddressSanitizer is built in (GCC says so by a macro, Clang by __has_feature): its
+// shadow memory does not run in a limited address space, so such tests skip there.
+#if defined(__SANITIZE_ADDRESS__)
+#define RC_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RC_TEST_UNDER_ASAN 1
+#endif
+#endif
+
 namespace rc::testing {
 
 // Limits the address space to what the process maps now plus `headroomBytes` (1 MB: small

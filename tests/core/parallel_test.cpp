@@ -47,7 +47,7 @@ template <typename Loop>
 // the kept helpers are started and where a nested loop starts threads of its own; the loop
 // can run again once threads can start.
 TEST(ParallelFor, AThreadThatCannotStartIsNamedWithExitCode4) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(RC_TEST_UNDER_ASAN)
   GTEST_SKIP() << "the sanitizer's shadow memory does not run in a limited address space";
 #endif
   GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: no helper started yet

@@ -141,7 +141,7 @@ TEST(Reference, WritesEachAttributesSpreadOverTheHitTriangle) {
 // exit 4 like a full disk, not an internal error (exit 5) that asks for a report; once memory
 // is back a device is made.
 TEST(Reference, EmbreeOutOfMemoryIsNamedWithExitCode4) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(RC_TEST_UNDER_ASAN)
   GTEST_SKIP() << "the sanitizer's shadow memory does not run in a limited address space";
 #endif
   GTEST_FLAG_SET(death_test_style, "threadsafe");
