@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <string>
+#include <system_error>
 
 #include "core/error.h"
 
@@ -31,10 +32,10 @@ class HelperPool {
         const int index = int(threads_.size());
         try {
           threads_.emplace_back([this, index] { loop(index); });
-        } catch (const std::system_error& e) {
+        } catch (...) {
           // The helpers started wait for a later run; the pool stays usable.
           busy_.store(false, std::memory_order_release);
-          threadStartFailed(index + 2, helpers + 1, e);
+          threadStartFailed(index + 2, helpers + 1);
         }
       }
       work_ = work;
@@ -101,10 +102,14 @@ class HelperPool {
 
 }  // namespace
 
-void threadStartFailed(int worker, int workers, const std::exception& cause) {
-  throw Error(ExitCode::kIo, "cannot start worker thread " + std::to_string(worker) + " of " +
-                                 std::to_string(workers) + ": " + cause.what() +
-                                 " (memory or the limit on processes ran out; --threads 1 starts none)");
+void threadStartFailed(int worker, int workers) {
+  try {
+    throw;
+  } catch (const std::system_error& cause) {
+    throw Error(ExitCode::kIo, "cannot start worker thread " + std::to_string(worker) + " of " +
+                                   std::to_string(workers) + ": " + cause.what() +
+                                   " (memory or the limit on processes ran out; --threads 1 starts none)");
+  }
 }
 
 bool runOnHelpers(int helpers, void (*work)(void*, int), void* context) {

@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
-#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -33,13 +32,16 @@ namespace detail {
 // then starts threads of its own.
 bool runOnHelpers(int helpers, void (*work)(void*, int), void* context);
 
-// Thrown where a thread cannot be started (memory or the process limit ran out), as an
-// rc::Error with exit code 4 naming the thread: "cannot start worker thread 2 of 2: ...".
-[[noreturn]] void threadStartFailed(int worker, int workers, const std::exception& cause);
+// Called in the catch block where a thread could not be started. A std::system_error (memory
+// or the process limit ran out) is thrown again as an rc::Error with exit code 4 naming the
+// thread: "cannot start worker thread 2 of 2: ...". Anything else (std::bad_alloc, where the
+// thread's state could not be allocated) is rethrown as it is.
+[[noreturn]] void threadStartFailed(int worker, int workers);
 
 // Runs worker(w) for every w in [0, threads), worker 0 on the calling thread. Where a thread
-// cannot be started, the ones already started finish (each worker takes what work is left, so
-// they end) and are joined, and threadStartFailed throws.
+// cannot be started, whatever std::thread throws, the ones already started finish (each
+// worker takes what work is left, so they end) and are joined before threadStartFailed
+// throws: a std::thread destroyed unjoined would call std::terminate.
 template <typename Worker>
 void runWorkers(int threads, Worker& worker) {
   const auto run = [](void* context, int w) { (*static_cast<Worker*>(context))(w); };
@@ -49,9 +51,9 @@ void runWorkers(int threads, Worker& worker) {
     for (int w = 1; w < threads; ++w) {
       try {
         pool.emplace_back(worker, w);
-      } catch (const std::system_error& e) {
+      } catch (...) {
         for (auto& thread : pool) thread.join();
-        threadStartFailed(w + 1, threads, e);
+        threadStartFailed(w + 1, threads);
       }
     }
     worker(0);

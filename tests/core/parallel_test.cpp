@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <new>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -58,6 +59,38 @@ TEST(ParallelFor, AThreadThatCannotStartIsNamedWithExitCode4) {
                 parallelFor(2, 2, [&](int) { parallelFor(8, 2, noop); });
               }),
               ::testing::ExitedWithCode(4), "cannot start worker thread 2 of 2");
+}
+
+// A worker whose second copy throws std::bad_alloc: std::thread copies its callable into the
+// state it allocates, so this is how starting a thread fails with something other than a
+// std::system_error.
+struct WorkerWhoseSecondCopyThrows {
+  std::atomic<int>* copies;
+  std::atomic<int>* runs;
+  WorkerWhoseSecondCopyThrows(std::atomic<int>* c, std::atomic<int>* r) : copies(c), runs(r) {}
+  WorkerWhoseSecondCopyThrows(const WorkerWhoseSecondCopyThrows& o) : copies(o.copies), runs(o.runs) {
+    if (copies->fetch_add(1) == 1) throw std::bad_alloc();
+  }
+  WorkerWhoseSecondCopyThrows(WorkerWhoseSecondCopyThrows&&) noexcept = default;
+  void operator()(int) const { runs->fetch_add(1); }
+};
+
+// Where a nested loop (the kept helpers are busy) starts threads of its own and the second
+// one fails with std::bad_alloc, the first is joined and the std::bad_alloc comes back as it
+// is (the CLI names it "out of memory", exit 4). Destroying the started thread unjoined would
+// call std::terminate. The loops run again afterwards.
+TEST(ParallelFor, AThreadThatCannotBeAllocatedJoinsTheOnesStartedAndRethrows) {
+  std::atomic<int> copies{0}, runs{0};
+  EXPECT_THROW(parallelFor(2, 2,
+                           [&](int i) {
+                             if (i != 0) return;
+                             WorkerWhoseSecondCopyThrows worker(&copies, &runs);
+                             detail::runWorkers(3, worker);
+                           }),
+               std::bad_alloc);
+  EXPECT_EQ(copies.load(), 2);
+  EXPECT_EQ(runs.load(), 1);  // the thread started ran and was joined; worker 0 never ran
+  EXPECT_EQ(visits(100, 3), std::vector<int>(100, 1));
 }
 
 TEST(ParallelFor, RethrowsTheFirstExceptionAndStaysUsable) {
