@@ -1,18 +1,17 @@
 // Checks made on a glTF file before and while tinygltf reads it: the GLB container, the URIs
-// it may name, and bounds-checked accessor reads.
+// it may name, the fields rastercheck reads, and the files tinygltf may open. The accessors'
+// bounds-checked reads are gltf_accessors.h's.
 #pragma once
 
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>
 
-#include <cstdint>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "core/plane_allocator.h"
 #include "scenes/loaders/gltf_data_uris.h"
 
 namespace rc::gltf {
@@ -46,52 +45,6 @@ void checkFields(const nlohmann::json& doc, const std::string& path);
 // Guards a read at an index checkFields has already held below its array's size: past the end
 // here would be a gap in those checks, so it is an internal error, not the file's.
 void requireChecked(int index, std::size_t size, const std::string& where);
-
-// What an accessor is read for: it decides the component types allowed.
-// kMatrix: float only (inverse bind matrices, instance translations and scales); kRotation:
-// float or normalised signed integers (EXT_mesh_gpu_instancing's ROTATION).
-enum class Use { kPosition, kNormal, kTangent, kTexcoord, kColor, kIndices, kJoints, kWeights, kMatrix, kCustom, kRotation };
-
-// Bounds-checked accessor reads (64-bit arithmetic throughout). An accessor without a
-// bufferView holds zeros; sparse storage then replaces the elements it names (indices strictly
-// increasing and below the count, as the specification requires). Component types follow the
-// glTF 2.0 tables, widened by KHR_mesh_quantization's when the file lists it in extensionsUsed;
-// normalised integers are converted as the specification says (c / 255, max(c / 127, -1)...).
-// Errors are badInput("path: accessors[i]" or "...accessors[i].sparse.indices", ...); an index
-// past the file's accessors is requireChecked's internal error.
-class AccessorReader {
- public:
-  // The most elements an accessor without a bufferView (zeros, perhaps sparse) may have: such
-  // elements take no bytes in the file, so a small file could otherwise ask for any amount.
-  static constexpr std::uint64_t kMaxZeroElements = std::uint64_t(1) << 24;
-
-  AccessorReader(const tinygltf::Model& model, const std::string& path);
-
-  // `components` per element, converted to float; `displacement` for a morph target's values.
-  HugeVector<float> floats(int index, Use use, int components, bool displacement = false) const;
-  // Vertex indices, each checked against `vertexCount`.
-  HugeVector<unsigned> indices(int index, std::size_t vertexCount) const;
-  bool quantized() const { return quantized_; }
-
- private:
-  std::string where(int index) const;
-  const tinygltf::Accessor& accessor(int index) const;
-  // The elements of accessor `index` (one accessor() has found) packed tightly, sparse
-  // replacements applied.
-  HugeVector<unsigned char> elements(int index, int components) const;
-  struct Range {
-    const unsigned char* base;
-    std::uint64_t stride;
-  };
-  // Where `count` elements start in a buffer view, after checking that they lie inside it.
-  Range locate(int viewIndex, long long byteOffset, std::uint64_t count, std::uint64_t element, bool strided,
-               const std::string& where) const;
-  static void copy(const Range& range, std::uint64_t count, std::uint64_t element, unsigned char* out);
-
-  const tinygltf::Model& model_;
-  const std::string& path_;
-  bool quantized_ = false;
-};
 
 // tinygltf's error text, without its last newline, each line cut to `width` characters: it
 // quotes a data: URI it cannot decode whole, which can be megabytes.
