@@ -155,10 +155,11 @@ void registerBench(CLI::App& root, Action& action) {
   command->add_option("--json", args->json, "write the rows as JSON (docs/report-format.md; '-': standard output, and the table to stderr)");
   command->add_option("--csv", args->csv, "write the rows as CSV ('-': standard output, and the table to stderr)");
   command->add_option("--chart", args->chart, "write frame time against error as a chart: FILE.svg or FILE.png");
-  command->add_option("--settings", args->only,
-                      "time only these settings, by their names in the table (default: the default setting's), "
-                      "in the table's order; default: every one")
-      ->delimiter(',');
+  addListOption(
+      command, "--settings", [args](std::vector<std::string> names) { args->only = std::move(names); },
+      "time only these settings, by their names in the table (default: the default setting's), in the table's order; "
+      "default: every one")
+      ->type_name("NAME[,NAME]");
   command->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   addRenderOptions(command, args->settings);
   command->get_option("--embree-isa")

@@ -85,10 +85,11 @@ void registerCompare(CLI::App& root, Action& action) {
   addBaselineOptions(command, args->baseline, "rastercheck compare --json");
   addThreadsOption(command, args->threads,
                    "threads decoding and encoding the EXR files and measuring the channel families");
-  command->add_option("--attributes", args->thresholds.attributes,
-                      "compare only these attributes (e.g. uv,normal), leaving out any other either image carries; "
-                      "default: every one, each required in both")
-      ->delimiter(',');
+  addListOption(
+      command, "--attributes", [args](std::vector<std::string> names) { args->thresholds.attributes = std::move(names); },
+      "compare only these attributes (e.g. uv,normal), leaving out any other either image carries; default: every one, "
+      "each required in both")
+      ->type_name("NAME[,NAME]");
   addExrCompressionOption(command, args->compression);
   command->callback([args, command, &action] {
     args->givenLimits = givenLimits(*command);

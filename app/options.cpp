@@ -41,19 +41,27 @@ const CLI::Validator kFiniteNonNegative(
     },
     "FINITE>=0");
 
-// One item of --max-attr or --warn-attr: LIMIT (every attribute) or NAME=LIMIT (attribute NAME).
-const CLI::Validator kAttributeLimit(
-    [](std::string& text) -> std::string {
-      const std::size_t equals = text.find('=');
-      const std::string_view limit = equals == std::string::npos ? std::string_view(text)
-                                                                 : std::string_view(text).substr(equals + 1);
-      if (equals == 0) return "'" + text + "' names no attribute before '='";
-      if (!finiteNonNegative(limit)) {
-        return "must be LIMIT or NAME=LIMIT with LIMIT a finite number >= 0, got '" + text + "'";
-      }
-      return {};
-    },
-    "");
+// Why an item of --max-attr or --warn-attr is refused, or "": LIMIT (every attribute) or
+// NAME=LIMIT (attribute NAME).
+std::string attributeLimitProblem(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  const std::string_view limit = equals == std::string::npos ? std::string_view(text)
+                                                             : std::string_view(text).substr(equals + 1);
+  if (equals == 0) return "'" + text + "' names no attribute before '='";
+  if (!finiteNonNegative(limit)) return "must be LIMIT or NAME=LIMIT with LIMIT a finite number >= 0, got '" + text + "'";
+  return {};
+}
+
+// The items of a comma-separated list, empty ones kept: "a,,b" is a, "" and b.
+std::vector<std::string> listItems(const std::string& text) {
+  std::vector<std::string> items;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
 
 // --max-attr's or --warn-attr's items, each already checked: a bare limit sets every
 // attribute's (`every`, a double or an optional one), NAME=LIMIT one attribute's. Naming an
@@ -81,19 +89,41 @@ void setAttributeLimits(const char* option, const std::vector<std::string>& item
 template <typename Every>
 void addAttributeLimitOption(CLI::App* command, const char* option, Every& every, std::map<std::string, double>& byName,
                              const std::string& help) {
-  command
-      ->add_option_function<std::vector<std::string>>(
-          option,
-          [option, &every, &byName](const std::vector<std::string>& items) {
-            setAttributeLimits(option, items, every, byName);
-          },
-          help)
-      ->delimiter(',')
-      ->check(kAttributeLimit)
-      ->type_name("LIMIT|NAME=LIMIT");
+  addListOption(
+      command, option,
+      [option, &every, &byName](const std::vector<std::string>& items) { setAttributeLimits(option, items, every, byName); },
+      help, attributeLimitProblem)
+      ->type_name("LIMIT|NAME=LIMIT[,...]");
 }
 
 }  // namespace
+
+CLI::Option* addListOption(CLI::App* command, const std::string& name, std::function<void(std::vector<std::string>)> take,
+                           const std::string& help, std::function<std::string(const std::string&)> checkItem) {
+  return command
+      ->add_option_function<std::vector<std::string>>(
+          name,
+          [take](const std::vector<std::string>& given) {
+            std::vector<std::string> items;
+            for (const std::string& text : given) {
+              for (std::string& item : listItems(text)) items.push_back(std::move(item));
+            }
+            take(std::move(items));
+          },
+          help)
+      ->allow_extra_args(false)
+      ->check(CLI::Validator(
+          [checkItem](std::string& text) -> std::string {
+            for (const std::string& item : listItems(text)) {
+              if (item.empty()) return "'" + text + "' has an empty item; separate the items with single commas (a,b)";
+              if (checkItem) {
+                if (std::string problem = checkItem(item); !problem.empty()) return problem;
+              }
+            }
+            return {};
+          },
+          ""));
+}
 
 std::string lowerCase(std::string text) {
   for (char& ch : text) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -163,8 +193,10 @@ void addSceneOptions(CLI::App* command, RenderSettings& s) {
                       "glTF files: the camera to render through, by its index in the file's cameras or its name "
                       "(default: the first the scene places)")
       ->type_name("INDEX|NAME");
-  command->add_option("--attributes", s.attributes, "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
-      ->delimiter(',');
+  addListOption(
+      command, "--attributes", [&s](std::vector<std::string> names) { s.attributes = std::move(names); },
+      "attributes to interpolate and write (e.g. uv,normal); default: all the scene carries")
+      ->type_name("NAME[,NAME]");
   command->add_option("--max-triangles", s.maxTriangles, "refuse scenes with more triangles than this")
       ->check(CLI::Range(1LL, 4'000'000'000LL))->capture_default_str();
   command->add_option("--max-image-side", s.maxImageSide, "refuse images wider or taller than this")

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <set>
 #include <string>
 #include <utility>
@@ -48,6 +49,15 @@ void addChoice(CLI::App* command, const std::string& name, Enum& target,
       ->type_name(names)
       ->default_str(fallback);
 }
+
+// An option that takes a list separated by commas ("uv,normal"), given once or repeated. It
+// takes one argument each time, so a scene or file after it stays a positional (CLI11's list
+// options took every argument up to the next option: `--attributes uv cube` read cube as an
+// attribute), and an empty item ("uv,,normal", a lone ",") is refused rather than skipped
+// (CLI11 skipped it and took the next argument in its place). checkItem, where given, says why
+// an item is refused ("" where it is not); `take` receives the items of every occurrence.
+CLI::Option* addListOption(CLI::App* command, const std::string& name, std::function<void(std::vector<std::string>)> take,
+                           const std::string& help, std::function<std::string(const std::string&)> checkItem = {});
 
 void addRenderOptions(CLI::App* command, RenderSettings& settings);
 // The options that change the scene itself (camera, size, attributes, limits), which

@@ -555,6 +555,27 @@ TEST(BadInput, Options) {
   EXPECT_EQ(rastercheck("check cube -q --threads 0").exitCode, 0);
 }
 
+// The options that take a list (--attributes, --max-attr and --warn-attr, bench's --settings)
+// take one argument each time they are given: the scene after one is a scene. An empty item is
+// refused by name; CLI11 skipped it and took the next argument in its place ("--attributes ,
+// cube" read cube as an attribute, of the default scenes).
+TEST(BadInput, ListOptionsTakeOneArgumentAndNoEmptyItem) {
+  for (const char* args : {"check --attributes , cube", "check --attributes uv,,normal sphere", "check --attributes uv, cube",
+                           "compare --attributes ,uv a.exr b.exr", "check --max-attr uv=1,,normal=2 sphere",
+                           "check --warn-attr , cube", "bench --settings default,, cube --runs 1"}) {
+    const Outcome r = rastercheck(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("has an empty item; separate the items with single commas"), std::string::npos)
+        << args << "\n" << r.output;
+  }
+  for (const char* args : {"check --attributes uv cube -q", "check --attributes uv --attributes normal sphere -q",
+                           "check --max-attr 1 cube -q", "check --warn-attr uv=1,normal=2 sphere -q"}) {
+    const Outcome r = rastercheck(args);
+    EXPECT_EQ(r.exitCode, 0) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("1 scene(s): all pass"), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
 // A --baseline that is not a report of the command: refused before anything is rendered or read.
 TEST(BadInput, BaselineReports) {
   TempDir dir;
