@@ -8,6 +8,7 @@
 #include "app/bench_chart.h"
 #include "app/commands.h"
 #include "app/options.h"
+#include "app/outputs.h"
 #include "scenes/registry.h"
 #include "app/progress.h"
 #include "compare/report.h"

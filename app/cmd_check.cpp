@@ -17,6 +17,7 @@
 #include "app/html_report.h"
 #include "app/junit.h"
 #include "app/options.h"
+#include "app/outputs.h"
 #include "app/progress.h"
 #include "compare/baseline.h"
 #include "compare/heatmap_png.h"

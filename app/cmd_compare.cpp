@@ -7,6 +7,7 @@
 #include "app/commands.h"
 #include "app/junit.h"
 #include "app/options.h"
+#include "app/outputs.h"
 #include "compare/baseline.h"
 #include "compare/heatmap_png.h"
 #include "compare/report.h"

@@ -8,6 +8,7 @@
 
 #include "app/commands.h"
 #include "app/options.h"
+#include "app/outputs.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "scenes/loaders/gltf_writer.h"

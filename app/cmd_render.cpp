@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "app/options.h"
+#include "app/outputs.h"
 #include "core/clock.h"
 #include "core/exr_io.h"
 

@@ -9,7 +9,7 @@
 
 #include <png.h>
 
-#include "app/options.h"
+#include "app/outputs.h"
 #include "core/png_io.h"
 #include "core/error.h"
 #include "tests/test_files.h"
