@@ -4,6 +4,7 @@
 #include <new>
 
 #include "app/commands.h"
+#include "app/options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   rc::app::registerBench(root, action);
   rc::app::registerExport(root, action);
   try {
+    rc::app::refuseEmptyAssignments(argc, argv);
     root.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return root.exit(e);

@@ -116,6 +116,18 @@ CLI::Option* addListOption(CLI::App* command, const std::string& name, std::func
           ""));
 }
 
+void refuseEmptyAssignments(int argc, const char* const* argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") return;
+    if (arg.size() > 3 && arg.substr(0, 2) == "--" && arg.find('=') == arg.size() - 1) {
+      const std::string name(arg.substr(0, arg.size() - 1));
+      throw CLI::ValidationError(std::string(arg), "nothing follows '='; give the value (" + name +
+                                                       "=VALUE or " + name + " VALUE) or leave the option out");
+    }
+  }
+}
+
 std::string lowerCase(std::string text) {
   for (char& ch : text) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return text;

@@ -17,6 +17,12 @@ namespace rc::app {
 
 std::string lowerCase(std::string text);
 
+// Refuses `--name=` with nothing after '=' (an unset shell variable in `--out=$DIR`), throwing
+// CLI::ValidationError that names it: CLI11 took the next argument as the value instead, so
+// `check --out= cube` checked the default scenes into a folder named cube. Arguments after
+// "--" are positionals, left alone. Call it before parsing.
+void refuseEmptyAssignments(int argc, const char* const* argv);
+
 // An option that takes one of `choices` by name, in any case, into `target`; its default is
 // target's value as given. CLI11's CheckedTransformer also took the enum's number (`--mode 1`
 // for affine) and showed a name->number table in the help.

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -367,6 +368,29 @@ TEST(BadInput, ListOptionsTakeOneArgumentAndNoEmptyItem) {
     EXPECT_EQ(r.exitCode, 0) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("1 scene(s): all pass"), std::string::npos) << args << "\n" << r.output;
   }
+}
+
+// `--name=` with nothing after '=' (an unset shell variable in `--out=$DIR`) is refused, naming
+// it, before anything runs: CLI11 took the next argument as the value, so `check --out= cube`
+// checked the default scenes into a folder named cube. After "--" an argument is a scene.
+TEST(BadInput, AnOptionWithNothingAfterItsEqualsSignIsRefused) {
+  TempDir dir;
+  const std::string obj = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  for (const std::string& args : {"check --out= " + obj, "check --json= " + obj, "check --attributes= " + obj,
+                                  "render --output= " + obj, "compare --heatmap= " + obj + " " + obj,
+                                  "bench --runs= " + obj}) {
+    const Outcome r = rastercheck(args + " -q");
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+    const std::string option = args.substr(args.find("--"), args.find('=') + 1 - args.find("--"));
+    EXPECT_NE(r.output.find(option + ": nothing follows '='"), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1) << "nothing written";
+  EXPECT_EQ(rc::testing::readFile(obj).substr(0, 6), "v 0 0 ") << "the OBJ is as it was";
+  const Outcome given = rastercheck("check " + obj + " --eye=0.5,0.5,3 --target=0.5,0.5,0 --json=" + dir.file("r.json") + " -q");
+  EXPECT_EQ(given.exitCode, 0) << given.output;
+  const Outcome afterDashes = rastercheck("check -q -- --odd=");
+  EXPECT_EQ(afterDashes.output.find("nothing follows"), std::string::npos) << afterDashes.output;
+  EXPECT_NE(afterDashes.output.find("--odd="), std::string::npos) << "a scene of that name: " << afterDashes.output;
 }
 
 // A --baseline that is not a report of the command: refused before anything is rendered or read.
